@@ -1,0 +1,130 @@
+// camera.hpp - the camera, its frame u, v, w, and one ray per pixel (stage 02).
+//
+// Fundamentals of Computer Graphics (Shirley, Marschner), 4th ed., sec. 4.3:
+//   frame (sec. 4.3, 2.4.7): w = -(look_at - e)/|look_at - e|, u = (up x w)/|up x w|, v = w x u
+//   pixel to image plane (eq. 4.1):  u = l + (r - l)(i + 0.5)/nx,  v = b + (t - b)(j + 0.5)/ny
+//   orthographic (sec. 4.3.1):       origin e + u u + v v,      direction -w
+//   perspective  (sec. 4.3.2):       origin e,                  direction -d w + u u + v v
+// The image row j counts from the bottom, as in the book; rt::image stores the
+// top row first, so pixel (i, j) lives at image row ny - 1 - j.
+#pragma once
+
+#include <cmath>
+#include <optional>
+
+#include "error.hpp"
+#include "ray.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+enum class projection { perspective, orthographic };
+
+/// The image-plane window: the u range [l, r] and the v range [b, t].
+struct window {
+    real l = -1, r = 1, b = -1, t = 1;
+};
+
+/// The camera as a scene file declares it. Either a vertical field of view or
+/// an explicit window; when neither is given, a perspective camera uses a
+/// 45 degree field of view and an orthographic one the window [-1, 1] in v,
+/// widened to the image's aspect ratio.
+struct camera {
+    projection kind = projection::perspective;
+    vec3 eye{0, 0, 1};      ///< e
+    vec3 look_at{0, 0, 0};  ///< the point the camera looks at
+    vec3 up{0, 1, 0};       ///< up vector; need not be orthogonal to the view direction
+    std::optional<real> fov_degrees;  ///< vertical field of view (perspective only)
+    std::optional<window> plane;      ///< explicit window l, r, b, t
+    real focal_distance = 1;          ///< d, the distance from e to the image plane
+};
+
+/// A right-handed orthonormal basis: u right, v up, w backwards (away from the view).
+struct frame {
+    vec3 u{1, 0, 0}, v{0, 1, 0}, w{0, 0, 1};
+};
+
+/// The camera frame from the eye e, the look-at point and the up vector.
+/// Precondition: e != look_at and up is not parallel to the view direction
+/// (the scene loader rejects both).
+inline frame make_frame(const vec3& e, const vec3& look_at, const vec3& up)
+{
+    // RT_EXERCISE_BEGIN(stage02: camera frame)
+    frame f;
+    f.w = glm::normalize(e - look_at);
+    f.u = glm::normalize(glm::cross(up, f.w));
+    f.v = glm::cross(f.w, f.u);
+    return f;
+    // RT_EXERCISE_END
+}
+
+/// The window of a vertical field of view at focal distance d, keeping the
+/// image's aspect ratio nx/ny (square pixels): t = d tan(fov/2), r = t nx/ny.
+inline window window_from_fov(real fov_degrees, real d, int nx, int ny)
+{
+    // RT_EXERCISE_BEGIN(stage02: field of view to window)
+    const real pi = real(3.14159265358979323846);
+    const real t = d * std::tan(fov_degrees * pi / real(360));
+    const real r = t * real(nx) / real(ny);
+    return window{-r, r, -t, t};
+    // RT_EXERCISE_END
+}
+
+/// The window the camera uses for an nx by ny image (see struct camera).
+inline window effective_window(const camera& cam, int nx, int ny)
+{
+    if (cam.plane)
+        return *cam.plane;
+    if (cam.kind == projection::perspective)
+        return window_from_fov(cam.fov_degrees.value_or(real(45)), cam.focal_distance, nx, ny);
+    const real aspect = real(nx) / real(ny);
+    return window{-aspect, aspect, -1, 1};
+}
+
+/// Everything ray generation needs, computed once per image rather than per ray.
+struct ray_generator {
+    projection kind = projection::perspective;
+    vec3 e{0};
+    frame basis;
+    window plane;
+    real d = 1;
+    int nx = 1, ny = 1;
+};
+
+inline ray_generator make_ray_generator(const camera& cam, int nx, int ny)
+{
+    ray_generator gen;
+    gen.kind = cam.kind;
+    gen.e = cam.eye;
+    gen.basis = make_frame(cam.eye, cam.look_at, cam.up);
+    gen.plane = effective_window(cam, nx, ny);
+    gen.d = cam.focal_distance;
+    gen.nx = nx;
+    gen.ny = ny;
+    return gen;
+}
+
+/// The ray through the image position (x, y), measured in pixels from the
+/// bottom-left corner of the image: pixel (i, j)'s centre is (i + 0.5, j + 0.5),
+/// so the book's eq. 4.1 is u = l + (r - l) x / nx, v = b + (t - b) y / ny.
+/// Samplers pass other positions inside the pixel.
+inline ray generate_ray(const ray_generator& gen, real x, real y)
+{
+    // RT_EXERCISE_BEGIN(stage02: generate a ray)
+    const window& win = gen.plane;
+    const real u = win.l + (win.r - win.l) * x / real(gen.nx);
+    const real v = win.b + (win.t - win.b) * y / real(gen.ny);
+    const vec3 offset = u * gen.basis.u + v * gen.basis.v;
+    if (gen.kind == projection::orthographic)
+        return ray{gen.e + offset, -gen.basis.w};
+    return ray{gen.e, offset - gen.d * gen.basis.w};
+    // RT_EXERCISE_END
+}
+
+/// The ray through the centre of pixel (i, j), j counted from the bottom row.
+inline ray pixel_ray(const ray_generator& gen, int i, int j)
+{
+    return generate_ray(gen, real(i) + real(0.5), real(j) + real(0.5));
+}
+
+} // namespace rt

@@ -1,0 +1,63 @@
+// error.hpp - the two exceptions rt throws.
+//
+// rt::error carries a message that is already one complete line, in the form
+//     file:line:col: expected <what>, found <what>; <hint>
+// so a program prints e.what() and exits non-zero. rt::exercise_not_done is
+// what a student kit's unfinished exercise throws.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rt {
+
+/// Where in an input file something was found. line and column count from 1;
+/// 0 means "not known" and is left out of the message.
+struct source_location {
+    std::string file;
+    int line = 0;
+    int column = 0;
+};
+
+/// "file:line:col" (or "file:line", or "file"), the prefix of every message.
+inline std::string to_string(const source_location& where)
+{
+    std::string text = where.file.empty() ? std::string("<input>") : where.file;
+    if (where.line > 0) {
+        text += ':' + std::to_string(where.line);
+        if (where.column > 0)
+            text += ':' + std::to_string(where.column);
+    }
+    return text;
+}
+
+/// A bad input or a failed operation: the message is one line, ready to print.
+class error : public std::runtime_error {
+public:
+    explicit error(const std::string& message) : std::runtime_error(message) {}
+    error(const source_location& where, const std::string& message)
+        : std::runtime_error(to_string(where) + ": " + message), where_(where) {}
+
+    const source_location& where() const { return where_; }
+
+private:
+    source_location where_;
+};
+
+/// The standard message: "file:line:col: expected X, found Y; hint".
+inline error parse_error(const source_location& where, const std::string& expected,
+                         const std::string& found, const std::string& hint = {})
+{
+    std::string message = "expected " + expected + ", found " + found;
+    if (!hint.empty())
+        message += "; " + hint;
+    return error(where, message);
+}
+
+/// Thrown by an exercise a student has not written yet (see docs/student-guide.md).
+class exercise_not_done : public std::logic_error {
+public:
+    explicit exercise_not_done(const std::string& what) : std::logic_error(what) {}
+};
+
+} // namespace rt

@@ -1,0 +1,150 @@
+// image_io.hpp - store an image: 8-bit PPM and PNG, and float PFM.
+//
+// The course: "RGB floats internally, RGB bytes stored". Before storing, each
+// linear channel is clamped to [0, 1], gamma-encoded and quantised to 8 bits
+// (stage 08 adds exposure, tone maps and the exact sRGB curve). PFM keeps the
+// linear floats exactly, for depth and normal buffers and for comparisons.
+// Every writer goes through write_atomically (atomic_file.hpp).
+#pragma once
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <istream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "atomic_file.hpp"
+#include "detail/stb_png.hpp"
+#include "error.hpp"
+#include "image.hpp"
+
+namespace rt {
+
+/// One linear channel to a byte: clamp to [0, 1], encode with a plain gamma
+/// (value^(1/gamma)), scale to 255 and round to nearest.
+inline std::uint8_t to_byte(float linear, float gamma = 2.2f)
+{
+    const float clamped = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f; // NaN fails the test: 0
+    const float encoded = std::pow(clamped, 1.0f / gamma);
+    return std::uint8_t(encoded * 255.0f + 0.5f); // at most 255.5, truncated to 255
+}
+
+/// The image as 8-bit RGB bytes, top row first (3 bytes a pixel).
+inline std::vector<std::uint8_t> to_rgb8(const image& img, float gamma = 2.2f)
+{
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(img.pixels.size() * 3);
+    for (const color& c : img.pixels)
+        for (int channel = 0; channel < 3; ++channel)
+            bytes.push_back(to_byte(c[channel], gamma));
+    return bytes;
+}
+
+/// Binary PPM (P6, netpbm.sourceforge.net/doc/ppm.html): the header
+/// "P6\n<width> <height>\n255\n", then 3 bytes per pixel, top row first.
+inline void write_ppm(std::ostream& out, const image& img, float gamma = 2.2f)
+{
+    // RT_EXERCISE_BEGIN(stage02: write a PPM image)
+    out << "P6\n" << img.width << ' ' << img.height << "\n255\n";
+    const std::vector<std::uint8_t> bytes = to_rgb8(img, gamma);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    // RT_EXERCISE_END
+}
+
+/// PNG bytes of 8-bit RGB pixels, through the vendored stb_image_write.
+inline std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgb8)
+{
+    std::vector<std::uint8_t> png;
+    auto append = [](void* context, void* data, int size) {
+        auto* target = static_cast<std::vector<std::uint8_t>*>(context);
+        const auto* first = static_cast<const std::uint8_t*>(data);
+        target->insert(target->end(), first, first + size);
+    };
+    if (!stbi_write_png_to_func(append, &png, width, height, 3, rgb8.data(), width * 3))
+        throw error("PNG encoding failed for a " + std::to_string(width) + "x" + std::to_string(height) + " image");
+    return png;
+}
+
+/// Portable float map (PFM, "PF" colour): the header "PF\n<w> <h>\n-1\n" (a
+/// negative scale means little-endian), then 3 floats per pixel, BOTTOM row first.
+inline void write_pfm(std::ostream& out, const image& img)
+{
+    out << "PF\n" << img.width << ' ' << img.height << "\n-1\n";
+    std::vector<unsigned char> row(std::size_t(img.width) * 12);
+    for (int y = img.height - 1; y >= 0; --y) {
+        for (int x = 0; x < img.width; ++x) {
+            const color& c = img.at(x, y);
+            for (int channel = 0; channel < 3; ++channel) {
+                std::uint32_t bits;
+                const float value = c[channel];
+                std::memcpy(&bits, &value, sizeof bits);
+                unsigned char* slot = &row[(std::size_t(x) * 3 + std::size_t(channel)) * 4];
+                for (int k = 0; k < 4; ++k)
+                    slot[k] = static_cast<unsigned char>((bits >> (8 * k)) & 0xffu);
+            }
+        }
+        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size()));
+    }
+}
+
+/// Reads a colour PFM written by write_pfm (or any little- or big-endian "PF").
+inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
+{
+    std::string magic;
+    int width = 0, height = 0;
+    double scale = 0;
+    if (!(in >> magic >> width >> height >> scale) || magic != "PF" || width <= 0 || height <= 0 ||
+        scale == 0 || std::int64_t(width) * height > (std::int64_t(1) << 28))
+        throw parse_error(source_location{name, 1, 1}, "a colour PFM header 'PF width height scale'",
+                          "something else", "is this a PFM file written by rt?");
+    in.get(); // the single whitespace byte after the scale
+    const bool little = scale < 0;
+    image img(width, height);
+    std::vector<unsigned char> row(std::size_t(width) * 12);
+    for (int y = height - 1; y >= 0; --y) {
+        if (!in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size())))
+            throw error(source_location{name}, "expected " + std::to_string(width) + "x" +
+                                                   std::to_string(height) + " pixels, found a truncated file");
+        for (int x = 0; x < width; ++x)
+            for (int channel = 0; channel < 3; ++channel) {
+                const unsigned char* slot = &row[(std::size_t(x) * 3 + std::size_t(channel)) * 4];
+                std::uint32_t bits = 0;
+                for (int k = 0; k < 4; ++k)
+                    bits |= std::uint32_t(slot[little ? k : 3 - k]) << (8 * k);
+                float value;
+                std::memcpy(&value, &bits, sizeof value);
+                img.at(x, y)[channel] = value;
+            }
+    }
+    return img;
+}
+
+/// Writes the image to `path`, atomically, in the format its extension names:
+/// .png and .ppm (8-bit, gamma-encoded) or .pfm (linear floats).
+inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
+{
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension == ".ppm") {
+        write_atomically(path, [&](std::ostream& out) { write_ppm(out, img, gamma); });
+    } else if (extension == ".pfm") {
+        write_atomically(path, [&](std::ostream& out) { write_pfm(out, img); });
+    } else if (extension == ".png") {
+        const std::vector<std::uint8_t> png = encode_png(img.width, img.height, to_rgb8(img, gamma));
+        write_atomically(path, [&](std::ostream& out) {
+            out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        });
+    } else {
+        throw error(source_location{path.string()},
+                    "expected an image extension .png, .ppm or .pfm, found '" + extension +
+                        "'; name the output file with one of them");
+    }
+}
+
+} // namespace rt

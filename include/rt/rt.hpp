@@ -1,0 +1,22 @@
+// rt.hpp - the whole library in one include.
+#pragma once
+
+#include "aabb.hpp"
+#include "atomic_file.hpp"
+#include "camera.hpp"
+#include "config.hpp"
+#include "error.hpp"
+#include "hit_record.hpp"
+#include "image.hpp"
+#include "image_io.hpp"
+#include "light.hpp"
+#include "material.hpp"
+#include "mesh.hpp"
+#include "obj_loader.hpp"
+#include "ray.hpp"
+#include "ray_image.hpp"
+#include "scene.hpp"
+#include "scene_loader.hpp"
+#include "sphere.hpp"
+#include "triangle.hpp"
+#include "vec.hpp"

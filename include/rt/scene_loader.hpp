@@ -1,0 +1,600 @@
+// scene_loader.hpp - read a scene file (stage 01).
+//
+// The format (docs/scene-format.md) is plain text, one statement a line:
+//     keyword argument... [option value...]   # comment
+// Every statement has documented defaults, so a file states only what it needs.
+// Every problem is an rt::error whose message is one line:
+//     file:line:col: expected <what>, found <what>; <hint>
+#pragma once
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "camera.hpp"
+#include "error.hpp"
+#include "obj_loader.hpp"
+#include "scene.hpp"
+
+namespace rt {
+
+/// Limits the loader checks before allocating anything, and how to raise them.
+struct load_options {
+    std::int64_t max_pixels = std::int64_t(1) << 26;  ///< 67 million pixels (8192 x 8192)
+    int max_depth = 64;                               ///< the largest max_depth a file may ask for
+    int max_samples = 1 << 16;                        ///< the largest samples per pixel
+    std::size_t max_line_length = 4096;               ///< characters in one line
+    obj_limits obj;                                   ///< limits for the OBJ files a scene names
+};
+
+/// One word of a line and the column (from 1) where it starts.
+struct token {
+    std::string text;
+    int column = 0;
+};
+
+/// The length of the shortest edit from a to b (Levenshtein), for "did you mean".
+inline std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j)
+        row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+/// "did you mean 'x'?" for the known word closest to `word`, or a list of them.
+inline std::string nearest_hint(const std::string& word, const std::vector<std::string>& known)
+{
+    if (known.empty())
+        return "none is declared yet";
+    const auto best = std::min_element(known.begin(), known.end(), [&](const std::string& x, const std::string& y) {
+        return edit_distance(word, x) < edit_distance(word, y);
+    });
+    if (edit_distance(word, *best) <= std::max<std::size_t>(2, word.size() / 3))
+        return "did you mean '" + *best + "'?";
+    std::string list;
+    for (const std::string& name : known)
+        list += (list.empty() ? "" : ", ") + name;
+    return "known: " + list;
+}
+
+/// Shortens what a file contained for an error message, so a message never
+/// dumps file contents: at most 24 printable characters, quoted.
+inline std::string found_text(const std::string& text)
+{
+    std::string shown;
+    for (char c : text.substr(0, 24))
+        shown += (c >= 32 && c < 127) ? c : '?';
+    return "'" + shown + (text.size() > 24 ? "...'" : "'");
+}
+
+/// One statement of a scene file, read left to right. Each reader names what it
+/// expects, so its error message can say it.
+class statement {
+public:
+    statement(std::string file, int line, std::vector<token> tokens, int end_column)
+        : file_(std::move(file)), line_(line), tokens_(std::move(tokens)), end_column_(end_column) {}
+
+    const std::string& keyword() const { return tokens_.front().text; }
+    /// Where the next unread token starts (or the end of the line).
+    source_location here() const { return {file_, line_, next_ < tokens_.size() ? tokens_[next_].column : end_column_}; }
+    source_location line_start() const { return {file_, line_, tokens_.front().column}; }
+    /// Where the token just read starts.
+    source_location last() const { return {file_, line_, tokens_[next_ - 1].column}; }
+    bool done() const { return next_ >= tokens_.size(); }
+    const std::string& peek() const { return tokens_[next_].text; }
+
+    /// An error at the next unread token: "expected <expected>, found <that token>".
+    error unexpected(const std::string& expected, const std::string& hint = {}) const
+    {
+        return parse_error(here(), expected, done() ? "the end of the line" : found_text(peek()), hint);
+    }
+
+    std::string word(const std::string& what)
+    {
+        if (done())
+            throw unexpected(what);
+        return tokens_[next_++].text;
+    }
+
+    /// A finite number (NaN, inf and numbers beyond rt::real's range are errors).
+    real number(const std::string& what)
+    {
+        if (done())
+            throw unexpected("a number for " + what);
+        const std::string& text = peek();
+        double value = 0;
+        const char* first = text.data();
+        const char* last = first + text.size();
+        if (!text.empty() && *first == '+')
+            ++first;
+        const auto [end, status] = std::from_chars(first, last, value);
+        if (status == std::errc() && end == last && !std::isfinite(value))
+            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
+        if (status == std::errc::result_out_of_range ||
+            (status == std::errc() && end == last && std::fabs(value) > double(std::numeric_limits<real>::max()))) {
+            std::ostringstream limit;
+            limit << std::numeric_limits<real>::max();
+            throw unexpected("a number for " + what + " within +-" + limit.str(), "use smaller units");
+        }
+        if (status != std::errc() || end != last)
+            throw unexpected("a number for " + what);
+        ++next_;
+        return real(value);
+    }
+
+    int integer(const std::string& what, int low, int high)
+    {
+        if (done())
+            throw unexpected("a whole number for " + what);
+        const std::string& text = peek();
+        long long value = 0;
+        const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (status != std::errc() || end != text.data() + text.size())
+            throw unexpected("a whole number for " + what);
+        if (value < low || value > high)
+            throw unexpected(what + " between " + std::to_string(low) + " and " + std::to_string(high));
+        ++next_;
+        return int(value);
+    }
+
+    vec3 vector(const std::string& what)
+    {
+        vec3 v;
+        v.x = number(what + " x");
+        v.y = number(what + " y");
+        v.z = number(what + " z");
+        return v;
+    }
+
+    /// A vector that must not be zero (a direction).
+    vec3 direction(const std::string& what)
+    {
+        const source_location where = here();
+        const vec3 v = vector(what);
+        if (glm::dot(v, v) == real(0))
+            throw parse_error(where, "a non-zero " + what, "0 0 0", "a direction needs a length");
+        return v;
+    }
+
+    /// An RGB colour with non-negative components.
+    color rgb(const std::string& what)
+    {
+        color c;
+        for (int channel = 0; channel < 3; ++channel) {
+            const source_location where = here();
+            const real value = number(what + " " + "rgb"[channel]);
+            if (value < 0)
+                throw parse_error(where, "a non-negative " + what, std::to_string(value), "colours cannot be negative");
+            c[channel] = float(value);
+        }
+        return c;
+    }
+
+    /// Reads "option value..." pairs until the end of the line; `read(option)`
+    /// consumes the value of a known option and returns false for an unknown one.
+    template <class Reader>
+    void options(const std::vector<std::string>& known, Reader&& read)
+    {
+        while (!done()) {
+            const std::string option = peek();
+            if (std::find(known.begin(), known.end(), option) == known.end())
+                throw unexpected("an option of '" + keyword() + "'", nearest_hint(option, known));
+            ++next_;
+            read(option);
+        }
+    }
+
+    /// Requires that nothing is left on the line.
+    void end() const
+    {
+        if (!done())
+            throw unexpected("the end of the line", "'" + keyword() + "' takes fewer arguments");
+    }
+
+private:
+    std::string file_;
+    int line_;
+    std::vector<token> tokens_;
+    int end_column_;
+    std::size_t next_ = 1; // tokens_[0] is the keyword
+};
+
+/// Reads a camera statement into `cam`:
+///     camera perspective|orthographic [eye x y z] [look_at x y z] [up x y z]
+///                                     [fov degrees] [window l r b t] [focal d]
+/// and checks that it describes a camera: e differs from look_at, up is not
+/// parallel to the view direction, fov in (0, 180), l < r, b < t, d > 0.
+inline void parse_camera(statement& line, camera& cam)
+{
+    // RT_EXERCISE_BEGIN(stage01: load the camera)
+    const std::string kind = line.word("a camera type (perspective or orthographic)");
+    if (kind == "perspective")
+        cam.kind = projection::perspective;
+    else if (kind == "orthographic")
+        cam.kind = projection::orthographic;
+    else
+        throw parse_error(line.last(), "a camera type (perspective or orthographic)", found_text(kind),
+                          nearest_hint(kind, {"perspective", "orthographic"}));
+
+    source_location view_at = line.line_start(), up_at = line.line_start();
+    line.options({"eye", "look_at", "up", "fov", "window", "focal"}, [&](const std::string& option) {
+        const source_location where = line.here();
+        if (option == "eye") {
+            cam.eye = line.vector("eye");
+            view_at = where;
+        } else if (option == "look_at") {
+            cam.look_at = line.vector("look_at");
+            view_at = where;
+        } else if (option == "up") {
+            cam.up = line.direction("up");
+            up_at = where;
+        } else if (option == "fov") {
+            const real fov = line.number("fov");
+            if (!(fov > 0 && fov < 180))
+                throw parse_error(where, "a field of view between 0 and 180 degrees", std::to_string(fov));
+            if (cam.kind == projection::orthographic)
+                throw parse_error(where, "a window for an orthographic camera", "fov",
+                                  "fov applies to perspective cameras only; use window l r b t");
+            cam.fov_degrees = fov;
+        } else if (option == "window") {
+            window win;
+            win.l = line.number("window l");
+            win.r = line.number("window r");
+            win.b = line.number("window b");
+            win.t = line.number("window t");
+            if (!(win.l < win.r) || !(win.b < win.t))
+                throw parse_error(where, "a window with l < r and b < t", "an empty window");
+            cam.plane = win;
+        } else { // focal
+            cam.focal_distance = line.number("focal distance");
+            if (!(cam.focal_distance > 0))
+                throw parse_error(where, "a positive focal distance", std::to_string(cam.focal_distance));
+        }
+    });
+    if (cam.fov_degrees && cam.plane)
+        throw parse_error(line.line_start(), "either fov or window", "both", "give one of them");
+    const vec3 view = cam.look_at - cam.eye;
+    if (glm::dot(view, view) == real(0))
+        throw parse_error(view_at, "a look_at point different from the eye", "the same point",
+                          "the camera needs a direction to look in");
+    const vec3 side = glm::cross(cam.up, view);
+    if (!(glm::dot(side, side) > real(1e-12) * glm::dot(view, view) * glm::dot(cam.up, cam.up)))
+        throw parse_error(up_at, "an up vector not parallel to the view direction", "a parallel one",
+                          "choose an up vector that differs from look_at - eye, such as 0 1 0 or 0 0 1");
+    // RT_EXERCISE_END
+}
+
+namespace detail {
+
+/// Splits one line into tokens: words separated by blanks, "quoted strings"
+/// (for paths with spaces), and a '#' that starts a comment.
+inline std::vector<token> tokenize(const std::string& text, const source_location& where)
+{
+    std::vector<token> tokens;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (c == ' ' || c == '\t' || c == '\r') {
+            ++i;
+        } else if (c == '#') {
+            break;
+        } else if (c < 32 || c >= 127) {
+            throw parse_error({where.file, where.line, int(i) + 1}, "plain text",
+                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
+        } else if (c == '"') {
+            const std::size_t close = text.find('"', i + 1);
+            if (close == std::string::npos)
+                throw parse_error({where.file, where.line, int(i) + 1}, "a closing '\"'", "the end of the line");
+            tokens.push_back({text.substr(i + 1, close - i - 1), int(i) + 1});
+            i = close + 1;
+        } else {
+            const std::size_t start = i;
+            while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#')
+                ++i;
+            tokens.push_back({text.substr(start, i - start), int(start) + 1});
+        }
+    }
+    return tokens;
+}
+
+inline int find_material(const scene& s, statement& line)
+{
+    const std::string name = line.word("a material name");
+    for (std::size_t i = 0; i < s.materials.size(); ++i)
+        if (s.materials[i].name == name)
+            return int(i);
+    std::vector<std::string> known;
+    for (const material& m : s.materials)
+        known.push_back(m.name);
+    throw parse_error(line.last(), "a declared material", "unknown material " + found_text(name),
+                      nearest_hint(name, known) + " (declare materials before using them)");
+}
+
+inline const std::vector<std::string>& keywords()
+{
+    static const std::vector<std::string> words = {"image",  "camera",  "material",   "sphere",  "triangle", "mesh",
+                                                   "light",  "ambient", "background", "samples", "max_depth"};
+    return words;
+}
+
+/// Reads the statements of a scene file, one at a time, into a scene.
+class scene_reader {
+public:
+    scene_reader(std::string file, std::filesystem::path folder, const load_options& options)
+        : file_(std::move(file)), folder_(std::move(folder)), options_(options) {}
+
+    void read_line(const std::string& text, int number)
+    {
+        const source_location where{file_, number, 1};
+        if (text.size() > options_.max_line_length)
+            throw parse_error(where, "a line of at most " + std::to_string(options_.max_line_length) + " characters",
+                              std::to_string(text.size()), "raise load_options::max_line_length");
+        std::vector<token> tokens = tokenize(text, where);
+        if (tokens.empty())
+            return;
+        statement line(file_, number, std::move(tokens), int(text.size()) + 1);
+        ++statements_;
+        dispatch(line);
+        line.end();
+    }
+
+    scene finish(int lines)
+    {
+        if (statements_ == 0)
+            throw parse_error({file_, std::max(lines, 1), 1}, "at least one statement", "an empty file",
+                              "see docs/scene-format.md for an example scene");
+        return std::move(result_);
+    }
+
+private:
+    void dispatch(statement& line)
+    {
+        const std::string& keyword = line.keyword();
+        if (keyword == "image")
+            read_image(line);
+        else if (keyword == "camera") {
+            if (seen_camera_)
+                throw parse_error(line.line_start(), "one camera", "a second camera statement",
+                                  "a scene has exactly one camera; delete one");
+            seen_camera_ = true;
+            parse_camera(line, result_.cam);
+        } else if (keyword == "material")
+            read_material(line);
+        else if (keyword == "sphere")
+            read_sphere(line);
+        else if (keyword == "triangle")
+            read_triangle(line);
+        else if (keyword == "mesh")
+            read_mesh(line);
+        else if (keyword == "light")
+            read_light(line);
+        else if (keyword == "ambient")
+            result_.ambient = line.rgb("ambient intensity");
+        else if (keyword == "background")
+            result_.background = line.rgb("background colour");
+        else if (keyword == "samples")
+            result_.samples = line.integer("samples per pixel", 1, options_.max_samples);
+        else if (keyword == "max_depth")
+            result_.max_depth = line.integer("max_depth", 0, options_.max_depth);
+        else
+            throw parse_error(line.line_start(), "a keyword", found_text(keyword), nearest_hint(keyword, keywords()));
+    }
+
+    void read_image(statement& line)
+    {
+        if (seen_image_)
+            throw parse_error(line.line_start(), "one image statement", "a second one", "delete one of them");
+        seen_image_ = true;
+        const source_location where = line.here();
+        const int width = line.integer("image width", 1, 1 << 20);
+        const int height = line.integer("image height", 1, 1 << 20);
+        if (std::int64_t(width) * height > options_.max_pixels)
+            throw parse_error(where, "at most " + std::to_string(options_.max_pixels) + " pixels",
+                              std::to_string(width) + "x" + std::to_string(height),
+                              "raise load_options::max_pixels if you mean it");
+        result_.width = width;
+        result_.height = height;
+    }
+
+    void read_material(statement& line)
+    {
+        material m;
+        m.name = line.word("a material name");
+        for (const material& other : result_.materials)
+            if (other.name == m.name)
+                throw parse_error(line.last(), "a new material name", "a second material " + found_text(m.name),
+                                  "material names must be unique");
+        bool ambient_given = false;
+        line.options({"ka", "kd", "ks", "p", "km"}, [&](const std::string& option) {
+            if (option == "ka") {
+                m.ka = line.rgb("ka");
+                ambient_given = true;
+            } else if (option == "kd")
+                m.kd = line.rgb("kd");
+            else if (option == "ks")
+                m.ks = line.rgb("ks");
+            else if (option == "km")
+                m.km = line.rgb("km");
+            else {
+                const source_location where = line.here();
+                m.p = line.number("Phong exponent p");
+                if (m.p < 0)
+                    throw parse_error(where, "a non-negative Phong exponent", std::to_string(m.p));
+            }
+        });
+        if (!ambient_given)
+            m.ka = m.kd;
+        result_.materials.push_back(m);
+    }
+
+    void read_sphere(statement& line)
+    {
+        sphere s;
+        line.options({"center", "radius", "material"}, [&](const std::string& option) {
+            if (option == "center")
+                s.center = line.vector("center");
+            else if (option == "radius") {
+                const source_location where = line.here();
+                s.radius = line.number("radius");
+                if (!(s.radius > 0))
+                    throw parse_error(where, "a positive radius", std::to_string(s.radius),
+                                      "a sphere's radius is its size, not a direction");
+            } else
+                s.material = find_material(result_, line);
+        });
+        result_.shapes.emplace_back(s);
+    }
+
+    void read_triangle(statement& line)
+    {
+        const source_location where = line.here();
+        triangle tri;
+        tri.a = line.vector("corner a");
+        tri.b = line.vector("corner b");
+        tri.c = line.vector("corner c");
+        const vec3 n = glm::cross(tri.b - tri.a, tri.c - tri.a);
+        if (!(glm::dot(n, n) > 0))
+            throw parse_error(where, "a triangle with non-zero area", "three corners on one line",
+                              "check the corners");
+        line.options({"material"}, [&](const std::string&) { tri.material = find_material(result_, line); });
+        result_.shapes.emplace_back(tri);
+    }
+
+    void read_mesh(statement& line)
+    {
+        const source_location where = line.here();
+        const std::filesystem::path relative = line.word("an OBJ file path");
+        int material_index = -2; // -2: keep the materials of the OBJ's MTL file
+        real scale = 1;
+        vec3 translate(0);
+        line.options({"material", "scale", "translate"}, [&](const std::string& option) {
+            if (option == "material")
+                material_index = find_material(result_, line);
+            else if (option == "scale") {
+                const source_location at = line.here();
+                scale = line.number("scale");
+                if (!(scale > 0))
+                    throw parse_error(at, "a positive scale", std::to_string(scale));
+            } else
+                translate = line.vector("translate");
+        });
+        const std::filesystem::path path = relative.is_absolute() ? relative : folder_ / relative;
+        obj_result loaded;
+        try {
+            loaded = load_obj(path, options_.obj);
+        } catch (const error& e) {
+            throw parse_error(where, "a loadable OBJ mesh", "an error", e.what());
+        }
+        mesh& m = loaded.geometry;
+        m.source = relative.string();
+        for (vec3& p : m.positions)
+            p = p * scale + translate;
+        if (material_index != -2) {
+            m.material = material_index;
+            m.face_materials.clear();
+        } else {
+            const int offset = int(result_.materials.size());
+            for (int& id : m.face_materials)
+                id = id < 0 ? -1 : id + offset;
+            result_.materials.insert(result_.materials.end(), loaded.materials.begin(), loaded.materials.end());
+        }
+        result_.shapes.emplace_back(std::move(m));
+    }
+
+    void read_light(statement& line)
+    {
+        const std::string kind = line.word("a light type (point or directional)");
+        light l;
+        if (kind == "point") {
+            l.kind = light_kind::point;
+            line.options({"position", "intensity"}, [&](const std::string& option) {
+                if (option == "position")
+                    l.position = line.vector("position");
+                else
+                    l.intensity = line.rgb("intensity");
+            });
+        } else if (kind == "directional") {
+            l.kind = light_kind::directional;
+            line.options({"direction", "intensity"}, [&](const std::string& option) {
+                if (option == "direction")
+                    l.direction = line.direction("direction");
+                else
+                    l.intensity = line.rgb("intensity");
+            });
+        } else {
+            throw parse_error(line.last(), "a light type (point or directional)", found_text(kind),
+                              nearest_hint(kind, {"point", "directional"}));
+        }
+        result_.lights.push_back(l);
+    }
+
+    std::string file_;
+    std::filesystem::path folder_;
+    load_options options_;
+    scene result_;
+    bool seen_camera_ = false;
+    bool seen_image_ = false;
+    int statements_ = 0;
+};
+
+inline scene load_scene_stream(std::istream& in, const std::string& name, const std::filesystem::path& folder,
+                               const load_options& options)
+{
+    scene_reader reader(name, folder, options);
+    std::string text;
+    int number = 0;
+    while (std::getline(in, text))
+        reader.read_line(text, ++number);
+    if (in.bad())
+        throw error(source_location{name, number}, "reading failed; is the file complete?");
+    return reader.finish(number);
+}
+
+} // namespace detail
+
+/// Parses scene text; `name` is used in messages, and mesh paths are relative to `folder`.
+inline scene load_scene_from_string(const std::string& text, const std::string& name = "<string>",
+                                    const std::filesystem::path& folder = ".", const load_options& options = {})
+{
+    std::istringstream in(text);
+    return detail::load_scene_stream(in, name, folder, options);
+}
+
+/// Loads a scene file. Throws rt::error with file:line:col on any problem.
+inline scene load_scene(const std::filesystem::path& path, const load_options& options = {})
+{
+    const std::string name = path.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw error(source_location{name}, "expected a scene file, found a folder; name the .scene file itself");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw error(source_location{name}, std::filesystem::exists(path, ec)
+                                               ? "expected a readable scene file, found one that cannot be opened; check its permissions"
+                                               : "expected a scene file, found no such file; check the path");
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    return detail::load_scene_stream(in, name, folder, options);
+}
+
+} // namespace rt

@@ -1,0 +1,212 @@
+// Stage 01 - load a scene (the camera must load).
+//
+// Every case builds its input here, from a string, so nothing of a later stage
+// can fail it. Error cases check the whole promise: one line, file:line:col,
+// what was expected, what was found.
+#include <doctest/doctest.h>
+
+#include <string>
+#include <variant>
+
+#include <rt/scene_loader.hpp>
+
+namespace {
+
+/// The message rt::load_scene_from_string throws for `text`, or "" if it loads.
+std::string error_of(const std::string& text)
+{
+    try {
+        rt::load_scene_from_string(text, "bad.scene", RT_TEST_DATA_DIR);
+    } catch (const rt::error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool one_line(const std::string& message) { return message.find('\n') == std::string::npos; }
+
+} // namespace
+
+TEST_CASE("a camera line loads every field it states")
+{
+    const rt::scene s = rt::load_scene_from_string(
+        "camera perspective eye 1 2 3 look_at 4 5 6 up 0 0 1 fov 30 focal 2\n");
+    CHECK(s.cam.kind == rt::projection::perspective);
+    CHECK(s.cam.eye == rt::vec3(1, 2, 3));
+    CHECK(s.cam.look_at == rt::vec3(4, 5, 6));
+    CHECK(s.cam.up == rt::vec3(0, 0, 1));
+    REQUIRE(s.cam.fov_degrees.has_value());
+    CHECK(*s.cam.fov_degrees == doctest::Approx(30));
+    CHECK(s.cam.focal_distance == doctest::Approx(2));
+    CHECK_FALSE(s.cam.plane.has_value());
+}
+
+TEST_CASE("an orthographic camera loads its window")
+{
+    const rt::scene s = rt::load_scene_from_string(
+        "image 200 100\ncamera orthographic eye 0 0 5 look_at 0 0 0 window -2 2 -1 1\n");
+    CHECK(s.cam.kind == rt::projection::orthographic);
+    REQUIRE(s.cam.plane.has_value());
+    CHECK(s.cam.plane->l == doctest::Approx(-2));
+    CHECK(s.cam.plane->r == doctest::Approx(2));
+    CHECK(s.cam.plane->b == doctest::Approx(-1));
+    CHECK(s.cam.plane->t == doctest::Approx(1));
+    CHECK(s.width == 200);
+    CHECK(s.height == 100);
+}
+
+TEST_CASE("camera options may come in any order and default when left out")
+{
+    const rt::scene a = rt::load_scene_from_string("camera perspective up 0 1 0 eye 0 0 9\n");
+    CHECK(a.cam.eye == rt::vec3(0, 0, 9));
+    CHECK(a.cam.look_at == rt::vec3(0, 0, 0));
+    const rt::scene b = rt::load_scene_from_string("camera perspective\n");
+    CHECK(b.cam.eye == rt::camera{}.eye);
+    CHECK_FALSE(b.cam.fov_degrees.has_value());
+}
+
+TEST_CASE("a file states only what it needs: every other setting has its default")
+{
+    const rt::scene s = rt::load_scene_from_string("# nothing but a sphere\nsphere\n");
+    CHECK(s.width == 640);
+    CHECK(s.height == 480);
+    CHECK(s.samples == 1);
+    CHECK(s.max_depth == 5);
+    CHECK(s.materials.empty());
+    CHECK(s.lights.empty());
+    REQUIRE(s.shapes.size() == 1);
+    const rt::sphere& ball = std::get<rt::sphere>(s.shapes[0]);
+    CHECK(ball.center == rt::vec3(0));
+    CHECK(ball.radius == doctest::Approx(1));
+    CHECK(ball.material == -1);
+    CHECK(&s.material_of(ball.material) == &s.default_material);
+}
+
+TEST_CASE("the scene holds exactly the shapes, materials and lights the file declares, in order")
+{
+    const rt::scene s = rt::load_scene_from_string(
+        "material red kd 1 0 0\n"
+        "material glass kd 0 0 0 ks 1 1 1 p 100 km 0.5 0.5 0.5\n"
+        "sphere center 1 2 3 radius 0.5 material glass\n"
+        "triangle 0 0 0  1 0 0  0 1 0 material red\n"
+        "light point position 0 5 0 intensity 2 2 2\n"
+        "light directional direction 0 -1 0\n"
+        "ambient 0.2 0.3 0.4\nbackground 1 1 1\nsamples 16\nmax_depth 3\n");
+    REQUIRE(s.materials.size() == 2);
+    CHECK(s.materials[0].name == "red");
+    CHECK(s.materials[0].ka == rt::color(1, 0, 0)); // ka defaults to kd
+    CHECK(s.materials[1].p == doctest::Approx(100));
+    CHECK(s.materials[1].km == rt::color(0.5f));
+    REQUIRE(s.shapes.size() == 2);
+    CHECK(std::get<rt::sphere>(s.shapes[0]).material == 1);
+    CHECK(std::get<rt::triangle>(s.shapes[1]).material == 0);
+    REQUIRE(s.lights.size() == 2);
+    CHECK(s.lights[0].kind == rt::light_kind::point);
+    CHECK(s.lights[0].intensity == rt::color(2));
+    CHECK(s.lights[1].kind == rt::light_kind::directional);
+    CHECK(s.ambient == rt::color(0.2f, 0.3f, 0.4f));
+    CHECK(s.background == rt::color(1));
+    CHECK(s.samples == 16);
+    CHECK(s.max_depth == 3);
+}
+
+TEST_CASE("a mesh path is relative to the scene file and the mesh keeps only what the file has")
+{
+    const rt::scene s = rt::load_scene_from_string("mesh cube.obj scale 2 translate 1 0 0\n", "data.scene",
+                                                   RT_TEST_DATA_DIR);
+    REQUIRE(s.shapes.size() == 1);
+    const rt::mesh& m = std::get<rt::mesh>(s.shapes[0]);
+    CHECK(m.positions.size() == 8);
+    CHECK(m.triangles.size() == 12); // six quads, triangulated
+    CHECK(m.normals.empty());
+    CHECK(m.texcoords.empty());
+    const rt::aabb box = rt::scene_bounds(s);
+    CHECK(box.lo == rt::vec3(0, -1, -1));
+    CHECK(box.hi == rt::vec3(2, 1, 1));
+}
+
+TEST_CASE("scene bounds enclose every shape and nothing more")
+{
+    const rt::scene s = rt::load_scene_from_string(
+        "sphere center 0 0 0 radius 1\nsphere center 5 0 0 radius 2\ntriangle -3 0 0  0 4 0  0 0 -7\n");
+    const rt::aabb box = rt::scene_bounds(s);
+    CHECK(box.lo == rt::vec3(-3, -2, -7));
+    CHECK(box.hi == rt::vec3(7, 4, 2));
+    CHECK(rt::scene_bounds(rt::scene{}).empty());
+}
+
+TEST_CASE("comments, blank lines, tabs and quoted paths are understood")
+{
+    const rt::scene s = rt::load_scene_from_string(
+        "\n   # a comment line\n\tsphere\tradius 2 # trailing comment\n\nmesh \"cube.obj\"\n", "q.scene",
+        RT_TEST_DATA_DIR);
+    CHECK(s.shapes.size() == 2);
+}
+
+TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and what was found")
+{
+    struct bad_case {
+        const char* name;
+        const char* text;
+        const char* location;
+        const char* words;
+    };
+    const bad_case cases[] = {
+        {"unknown keyword, with the nearest known one", "sphere\nspere radius 1\n", "bad.scene:2:1:",
+         "did you mean 'sphere'?"},
+        {"unknown material, with the nearest declared one", "material red\nsphere material rad\n", "bad.scene:2:17:",
+         "did you mean 'red'?"},
+        {"missing OBJ file", "mesh no-such-file.obj\n", "bad.scene:1:6:", "no such file"},
+        {"too few arguments", "triangle 0 0 0 1 0 0 0 1\n", "bad.scene:1:25:", "found the end of the line"},
+        {"too many arguments", "ambient 0.1 0.1 0.1 0.1\n", "bad.scene:1:21:", "expected the end of the line"},
+        {"not a number", "sphere radius one\n", "bad.scene:1:15:", "expected a number for radius, found 'one'"},
+        {"NaN", "sphere center nan 0 0\n", "bad.scene:1:15:", "finite"},
+        {"inf", "light point position 0 inf 0\n", "bad.scene:1:24:", "finite"},
+        {"a number beyond float", "sphere radius 1e300\n", "bad.scene:1:15:", "within"},
+        {"negative radius", "sphere radius -2\n", "bad.scene:1:15:", "expected a positive radius"},
+        {"zero image size", "image 0 480\n", "bad.scene:1:7:", "image width between 1 and"},
+        {"absurd image size (the pixel limit)", "image 100000 100000\n", "bad.scene:1:7:", "pixels"},
+        {"up parallel to the view direction", "camera perspective eye 0 0 5 look_at 0 0 0 up 0 0 2\n",
+         "bad.scene:1:47:", "not parallel"},
+        {"eye equal to look_at", "camera perspective eye 1 1 1 look_at 1 1 1\n", "bad.scene:1:38:",
+         "different from the eye"},
+        {"zero-length up vector", "camera perspective up 0 0 0\n", "bad.scene:1:23:", "non-zero up"},
+        {"zero-length light direction", "light directional direction 0 0 0\n", "bad.scene:1:29:",
+         "non-zero direction"},
+        {"a second camera", "camera perspective\ncamera orthographic\n", "bad.scene:2:1:", "one camera"},
+        {"unknown camera type, with the nearest", "camera perspektive\n", "bad.scene:1:8:",
+         "did you mean 'perspective'?"},
+        {"unknown option", "sphere radius 1 colour red\n", "bad.scene:1:17:", "an option of 'sphere'"},
+        {"negative colour", "background 0 -1 0\n", "bad.scene:1:14:", "non-negative"},
+        {"duplicate material", "material a\nmaterial a\n", "bad.scene:2:10:", "unique"},
+        {"degenerate triangle", "triangle 0 0 0 1 1 1 2 2 2\n", "bad.scene:1:10:", "non-zero area"},
+        {"empty file", "# only a comment\n", "bad.scene:1:1:", "at least one statement"},
+        {"binary garbage", "sphere\n\x01\x02garbage\n", "bad.scene:2:1:", "plain text"},
+    };
+    for (const bad_case& c : cases) {
+        const std::string name = c.name;
+        CAPTURE(name);
+        const std::string message = error_of(c.text);
+        CAPTURE(message);
+        CHECK(message.rfind(c.location, 0) == 0);
+        CHECK(message.find(c.words) != std::string::npos);
+        CHECK(message.find("expected") != std::string::npos);
+        CHECK(one_line(message));
+    }
+}
+
+TEST_CASE("a missing or unreadable scene file is a clear error")
+{
+    try {
+        rt::load_scene(RT_TEST_DATA_DIR "/no-such.scene");
+        FAIL("expected an error");
+    } catch (const rt::error& e) {
+        CHECK(std::string(e.what()).find("no such file") != std::string::npos);
+    }
+    try {
+        rt::load_scene(RT_TEST_DATA_DIR);
+        FAIL("expected an error");
+    } catch (const rt::error& e) {
+        CHECK(std::string(e.what()).find("found a folder") != std::string::npos);
+    }
+}
