@@ -1,0 +1,78 @@
+// offset.hpp - where a secondary ray starts, so it does not hit its own surface (stage 06).
+//
+// A hit point computed in floating point lies a little above or below the true
+// surface. A shadow or reflection ray started exactly there may hit the surface
+// it starts on ("shadow acne"). Two cures:
+//
+// * the fixed epsilon of the textbook (Fundamentals of Computer Graphics, 4th
+//   ed., sec. 4.7): start at p + eps n, or search t in [eps, ...). One eps cannot
+//   fit every scale: too small far from the origin (the error of p grows with
+//   |p|), too large for small objects (shadows detach, light leaks).
+//
+// * Wachter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
+//   Ray Tracing Gems (2019), ch. 6: move p along the geometric normal by a fixed
+//   number of units in the last place of each coordinate (integer arithmetic on
+//   the float's bits), which scales with the coordinate's own rounding error;
+//   near zero, where ulps vanish, add a tiny fixed offset instead. Their constants
+//   for float: 256 ulps, and below |p| = 1/32 an offset of 1/65536 n.
+//   This assumes p itself is as accurate as the surface allows: rt computes mesh
+//   hit points from barycentrics and re-projects sphere hits onto the sphere.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#include "vec.hpp"
+
+namespace rt {
+
+namespace detail {
+
+/// The float or double x moved by |ulps| units in the last place towards +inf
+/// for positive ulps (towards -inf for negative ones), by integer arithmetic on
+/// its bits. (x must not be zero: near zero offset_ray_origin adds instead.)
+template <class Float>
+Float add_ulps(Float x, std::int64_t ulps)
+{
+    using Bits = std::conditional_t<sizeof(Float) == 4, std::int32_t, std::int64_t>;
+    Bits bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    // the bit pattern of a float grows with its magnitude, on either side of zero
+    bits = Bits(bits + (x < 0 ? -ulps : ulps));
+    Float moved;
+    std::memcpy(&moved, &bits, sizeof moved);
+    return moved;
+}
+
+} // namespace detail
+
+/// The robust origin of a ray leaving the surface at p on the side of the unit
+/// geometric normal n (Ray Tracing Gems ch. 6). To leave on the other side,
+/// pass -n.
+inline vec3 offset_ray_origin(const vec3& p, const vec3& n)
+{
+    // The constants of ch. 6 are for float; for double the same 256 ulps are
+    // kept (rt's double path computes hit points in double too), and the
+    // near-zero threshold and offset shrink by the 2^29 finer spacing.
+    constexpr bool is_float = sizeof(real) == 4;
+    constexpr real origin = real(1.0 / 32.0);
+    constexpr real float_scale = is_float ? real(1.0 / 65536.0) : real(1.0 / 65536.0 / 536870912.0);
+    constexpr real int_scale = real(256);
+    vec3 result;
+    for (int axis = 0; axis < 3; ++axis) {
+        const auto ulps = std::int64_t(int_scale * n[axis]); // truncation, as in ch. 6
+        result[axis] = std::fabs(p[axis]) < origin ? p[axis] + float_scale * n[axis]
+                                                   : detail::add_ulps(p[axis], ulps);
+    }
+    return result;
+}
+
+/// The textbook's fixed offset, for comparison: p + eps n.
+inline vec3 offset_ray_origin_fixed(const vec3& p, const vec3& n, real eps = real(1e-4))
+{
+    return p + eps * n;
+}
+
+} // namespace rt

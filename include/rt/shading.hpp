@@ -1,0 +1,59 @@
+// shading.hpp - Blinn-Phong shading (stage 05).
+//
+// Fundamentals of Computer Graphics (Shirley, Marschner), 4th ed., sec. 4.5.3
+// and 4.5.4 (eq. 4.3 for several lights):
+//     L = ka Ia + sum_i [ kd I_i max(0, n.l_i) + ks I_i max(0, n.h_i)^p ]
+// with n the unit surface normal, v the unit direction to the viewer, l_i the
+// unit direction to light i and h_i = (v + l_i)/|v + l_i| the half vector.
+// Colours multiply channel by channel; everything stays linear until output.
+#pragma once
+
+#include <cmath>
+
+#include "hit_record.hpp"
+#include "light.hpp"
+#include "material.hpp"
+#include "scene.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+/// The light one source reflects towards the viewer (the bracket of eq. 4.3):
+/// kd I max(0, n.l) + ks I max(0, n.h)^p. n, v, l are unit vectors.
+inline color blinn_phong(const material& m, const vec3& n, const vec3& v, const vec3& l, const color& I)
+{
+    // RT_EXERCISE_BEGIN(stage05: Blinn-Phong shading)
+    const vec3 h = glm::normalize(v + l);
+    const float diffuse = float(std::max(real(0), glm::dot(n, l)));
+    const float specular = float(std::pow(std::max(real(0), glm::dot(n, h)), m.p));
+    return m.kd * I * diffuse + m.ks * I * specular;
+    // RT_EXERCISE_END
+}
+
+struct shading_options {
+    bool light_falloff = false;  ///< point lights fall off as 1/r^2 (the book: off)
+};
+
+/// The direct light at a hit seen along direction d: the ambient term plus
+/// every light that `visible(sample)` says reaches the point (stage 06 passes a
+/// shadow test; stage 05 passes "always"). A light behind the surface, as seen
+/// from the viewer's side, contributes nothing.
+template <class Visibility>
+color direct_lighting(const scene& s, const hit_record& hit, const vec3& d, Visibility&& visible,
+                      const shading_options& options = {})
+{
+    const material& m = s.material_of(hit.material);
+    color L = m.ka * s.ambient;
+    const vec3 v = -glm::normalize(d);
+    for (const light& source : s.lights) {
+        const light_sample sample = sample_light(source, hit.point, options.light_falloff);
+        if (glm::dot(hit.geometric_normal, sample.l) <= 0)
+            continue; // the light is behind the surface: it cannot light this side
+        if (!visible(sample))
+            continue;
+        L += blinn_phong(m, hit.normal, v, sample.l, sample.intensity);
+    }
+    return L;
+}
+
+} // namespace rt
