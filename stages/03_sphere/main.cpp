@@ -1,0 +1,169 @@
+// Stage 03 - intersect one ray per pixel with the scene's spheres and look at
+// what it found: where the rays hit, the normals there, and how far away.
+//
+//     stage03_sphere scenes/spheres.scene -o spheres
+//     stage03_sphere scenes/spheres.scene -o spheres --method stable
+//
+// Only spheres are intersected, by a flat loop over the scene's shapes that
+// keeps the nearest hit (the course's "closest hit": each hit narrows tmax).
+// Triangles and meshes are stage 04: they are skipped, and the program says
+// how many it skipped.
+//
+// Writes, for PREFIX (default "stage03"):
+//   PREFIX-hit.png     white where a ray hit a sphere, black where it missed
+//   PREFIX-normal.png  the unit normal n at the hit as a colour, (n + 1) / 2
+//   PREFIX-normal.pfm  the normal itself, n in [-1, 1] per channel (0 0 0: miss)
+//   PREFIX-depth.pfm   the distance from the eye to the hit, t |d|, in every channel (0: miss)
+//   PREFIX-depth.png   depth as grey, linear from the nearest hit (white) to the farthest (1/4 grey)
+// The PNGs are written without gamma (bytes proportional to the values shown);
+// every file is written atomically.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <rt/camera.hpp>
+#include <rt/hit_record.hpp>
+#include <rt/image.hpp>
+#include <rt/image_io.hpp>
+#include <rt/scene.hpp>
+#include <rt/scene_loader.hpp>
+#include <rt/sphere.hpp>
+
+#include "stage_main.hpp"
+
+namespace {
+
+const char* usage =
+    "usage: stage03_sphere SCENE [-o PREFIX] [--method textbook|stable]\n"
+    "Intersects one ray per pixel with the scene's spheres (triangles and meshes are\n"
+    "stage 04 and are skipped) and writes PREFIX-hit.png, PREFIX-normal.png,\n"
+    "PREFIX-normal.pfm, PREFIX-depth.pfm and PREFIX-depth.png.\n"
+    "  -o PREFIX        where to write (default stage03)\n"
+    "  --method M       textbook: the course's quadratic (the stage-03 exercise, the default)\n"
+    "                   stable: the library's method (Ray Tracing Gems ch. 7)\n";
+
+using hit_function = bool (*)(const rt::sphere&, const rt::ray&, rt::real, rt::real, rt::hit_record&);
+
+/// The nearest hit of the ray with any of the spheres, in [0, infinity).
+bool closest_sphere_hit(const std::vector<rt::sphere>& spheres, const std::vector<std::uint32_t>& shape_index,
+                        hit_function hit, const rt::ray& r, rt::hit_record& closest)
+{
+    bool found = false;
+    rt::real tmax = std::numeric_limits<rt::real>::infinity();
+    for (std::size_t k = 0; k < spheres.size(); ++k) {
+        rt::hit_record rec;
+        if (hit(spheres[k], r, 0, tmax, rec)) {
+            found = true;
+            tmax = rec.t; // from now on only nearer hits count
+            closest = rec;
+            closest.shape = shape_index[k];
+        }
+    }
+    return found;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    return stage::run("stage03_sphere", [&] {
+        stage::arguments args(argc, argv);
+        std::string scene_path, prefix = "stage03", method = "textbook";
+        while (!args.done()) {
+            const std::string arg = args.take();
+            if (arg == "--help" || arg == "-h") {
+                std::cout << usage;
+                return 0;
+            } else if (arg == "-o") {
+                prefix = args.value_of("-o");
+                if (prefix.empty())
+                    throw rt::error("-o: expected a file name prefix, found an empty string; see --help");
+            } else if (arg == "--method") {
+                method = args.value_of("--method");
+                if (method != "textbook" && method != "stable")
+                    throw rt::error("--method: expected textbook or stable, found '" + method + "'");
+            } else if (!arg.empty() && arg[0] == '-') {
+                throw rt::error("expected an option (-o, --method, --help), found '" + arg + "'; see --help");
+            } else if (scene_path.empty()) {
+                scene_path = arg;
+            } else {
+                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
+            }
+        }
+        if (scene_path.empty())
+            throw rt::error("expected a scene file, found none; see --help");
+        const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
+                          normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",
+                          depth_png = prefix + "-depth.png";
+        for (const std::string& output : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
+            rt::check_writable(output); // fail before the work, not after it
+
+        const rt::scene s = rt::load_scene(scene_path);
+        std::vector<rt::sphere> spheres;
+        std::vector<std::uint32_t> shape_index;
+        std::size_t skipped_triangles = 0, skipped_meshes = 0;
+        for (std::size_t k = 0; k < s.shapes.size(); ++k) {
+            if (const rt::sphere* ball = std::get_if<rt::sphere>(&s.shapes[k])) {
+                spheres.push_back(*ball);
+                shape_index.push_back(std::uint32_t(k));
+            } else if (std::holds_alternative<rt::triangle>(s.shapes[k])) {
+                ++skipped_triangles;
+            } else {
+                ++skipped_meshes;
+            }
+        }
+        const hit_function hit = method == "stable" ? hit_function(rt::hit_sphere) : hit_function(rt::hit_sphere_textbook);
+
+        const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+        rt::image hits(s.width, s.height), normals(s.width, s.height), normal_values(s.width, s.height),
+            depths(s.width, s.height);
+        float nearest = std::numeric_limits<float>::infinity(), farthest = 0;
+        std::size_t hit_count = 0;
+        for (int j = 0; j < gen.ny; ++j)
+            for (int i = 0; i < gen.nx; ++i) {
+                const rt::ray r = rt::pixel_ray(gen, i, j);
+                rt::hit_record rec;
+                if (!closest_sphere_hit(spheres, shape_index, hit, r, rec))
+                    continue; // every buffer is 0 (black) where the ray missed
+                const int row = gen.ny - 1 - j; // images store the top row first
+                const rt::color n(rec.normal);
+                const float depth = float(rec.t * glm::length(r.direction));
+                hits.at(i, row) = rt::color(1);
+                normals.at(i, row) = (n + rt::color(1)) * 0.5f;
+                normal_values.at(i, row) = n;
+                depths.at(i, row) = rt::color(depth);
+                nearest = std::min(nearest, depth);
+                farthest = std::max(farthest, depth);
+                ++hit_count;
+            }
+        rt::image depth_view(s.width, s.height); // misses stay black, distinct from the farthest hit
+        const float range = farthest - nearest;
+        for (std::size_t k = 0; k < depths.pixels.size(); ++k)
+            if (depths.pixels[k].r > 0)
+                depth_view.pixels[k] =
+                    rt::color(range > 0 ? 1.0f - 0.75f * (depths.pixels[k].r - nearest) / range : 1.0f);
+
+        rt::save_image(hit_png, hits, 1.0f);
+        rt::save_image(normal_png, normals, 1.0f);
+        rt::save_image(normal_pfm, normal_values);
+        rt::save_image(depth_pfm, depths);
+        rt::save_image(depth_png, depth_view, 1.0f);
+
+        std::cerr << "stage03_sphere: " << spheres.size() << " sphere(s) intersected with the " << method << " method";
+        if (skipped_triangles + skipped_meshes > 0)
+            std::cerr << "; skipped " << skipped_triangles << " triangle(s) and " << skipped_meshes
+                      << " mesh(es) (stage 04)";
+        std::cerr << "\n" << hit_count << " of " << std::size_t(s.width) * std::size_t(s.height) << " rays hit";
+        if (hit_count > 0)
+            std::cerr << ", depth " << nearest << " to " << farthest;
+        std::cerr << "\nwrote " << hit_png << ", " << normal_png << ", " << normal_pfm << ", " << depth_pfm << ", "
+                  << depth_png << "\n";
+        return 0;
+    });
+}
