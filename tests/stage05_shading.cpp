@@ -1,0 +1,195 @@
+// Stage 05 - shading: Blinn-Phong, Fundamentals of Computer Graphics 4th ed., sec. 4.5.
+//
+// Every expected value is the formula
+//     L = ka Ia + sum_i [ kd I_i max(0, n.l_i) + ks I_i max(0, n.h_i)^p ]
+// evaluated by hand in double in the test, from the geometry of the case (a
+// unit sphere, an orthographic view along -z). Rays and scenes are made here:
+// nothing of stages 01, 02 or 04 is called, only the library's stable sphere
+// intersection (unmarked) and this stage's shading.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <rt/hit_record.hpp>
+#include <rt/scene.hpp>
+#include <rt/shading.hpp>
+#include <rt/sphere.hpp>
+
+namespace {
+
+const auto always_visible = [](const rt::light_sample&) { return true; };
+
+rt::material test_material()
+{
+    rt::material m;
+    m.ka = {0.2f, 0.1f, 0.05f};
+    m.kd = {0.7f, 0.5f, 0.3f};
+    m.ks = {0.4f, 0.4f, 0.4f};
+    m.p = 20;
+    return m;
+}
+
+/// A scene of one unit sphere at the origin with the test material and one
+/// directional light shining along -z (so l = +z everywhere).
+rt::scene one_sphere_scene()
+{
+    rt::scene s;
+    s.materials.push_back(test_material());
+    rt::sphere ball;
+    ball.material = 0;
+    s.shapes.emplace_back(ball);
+    rt::light sun;
+    sun.kind = rt::light_kind::directional;
+    sun.direction = {0, 0, -1};
+    sun.intensity = {1.0f, 0.9f, 0.8f};
+    s.lights.push_back(sun);
+    s.ambient = {0.3f, 0.3f, 0.3f};
+    return s;
+}
+
+/// The colour of the orthographic ray through (x, y), looking along -z.
+rt::color shade_at(const rt::scene& s, double x, double y)
+{
+    const rt::ray r{rt::vec3(rt::real(x), rt::real(y), 10), rt::vec3(0, 0, -1)};
+    rt::hit_record hit;
+    REQUIRE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit));
+    return rt::direct_lighting(s, hit, r.direction, always_visible);
+}
+
+void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
+{
+    CHECK(got.r == doctest::Approx(r).epsilon(eps));
+    CHECK(got.g == doctest::Approx(g).epsilon(eps));
+    CHECK(got.b == doctest::Approx(b).epsilon(eps));
+}
+
+} // namespace
+
+TEST_CASE("one sphere, one directional light, orthographic view: pixels equal the formula by hand")
+{
+    const rt::scene s = one_sphere_scene();
+    // Orthographic pixel centres of an 8 x 8 image over the window [-1, 1]^2:
+    // u = -1 + 2 (i + 0.5) / 8. The sphere point under (u, v) is (u, v, nz),
+    // nz = sqrt(1 - u^2 - v^2), with normal n = (u, v, nz); v = l = h = +z, so
+    // n.l = n.h = nz and L = ka Ia + kd I nz + ks I nz^20.
+    const double ka[3] = {0.2, 0.1, 0.05}, kd[3] = {0.7, 0.5, 0.3}, ks = 0.4, I[3] = {1.0, 0.9, 0.8}, Ia = 0.3;
+    int pixels_on_sphere = 0;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const double u = -1 + 2 * (i + 0.5) / 8, v = -1 + 2 * (j + 0.5) / 8;
+            if (u * u + v * v >= 1)
+                continue;
+            ++pixels_on_sphere;
+            const double nz = std::sqrt(1 - u * u - v * v);
+            double expected[3];
+            for (int c = 0; c < 3; ++c)
+                expected[c] = ka[c] * Ia + kd[c] * I[c] * nz + ks * I[c] * std::pow(nz, 20);
+            CAPTURE(u);
+            CAPTURE(v);
+            check_color(shade_at(s, u, v), expected[0], expected[1], expected[2], 1e-4);
+        }
+    CHECK(pixels_on_sphere == 52);
+}
+
+TEST_CASE("the ray through the sphere's centre: n = l = v = h, every term at its maximum")
+{
+    const rt::color L = shade_at(one_sphere_scene(), 0, 0);
+    // 0.2*0.3 + 0.7*1 + 0.4*1 = 1.16; 0.1*0.3 + 0.5*0.9 + 0.4*0.9 = 0.84; 0.05*0.3 + 0.3*0.8 + 0.4*0.8 = 0.575
+    check_color(L, 1.16, 0.84, 0.575);
+}
+
+TEST_CASE("each term alone: ambient only, a light switched off, a light behind the surface")
+{
+    rt::scene s = one_sphere_scene();
+    SUBCASE("ambient only (no lights): L = ka Ia everywhere")
+    {
+        s.lights.clear();
+        check_color(shade_at(s, 0.3, -0.2), 0.2 * 0.3, 0.1 * 0.3, 0.05 * 0.3);
+    }
+    SUBCASE("a light of intensity 0 adds nothing")
+    {
+        s.lights[0].intensity = rt::color(0.0f);
+        check_color(shade_at(s, 0.5, 0.5), 0.06, 0.03, 0.015);
+    }
+    SUBCASE("a light behind the surface adds neither diffuse nor specular")
+    {
+        s.lights[0].direction = {0, 0, 1}; // shines along +z: l = -z, behind the visible side
+        check_color(shade_at(s, 0.1, 0.2), 0.06, 0.03, 0.015);
+    }
+    SUBCASE("diffuse only: ks = 0, Ia = 0, a light from the side at 60 degrees from n")
+    {
+        s.materials[0].ks = rt::color(0.0f);
+        s.ambient = rt::color(0.0f);
+        // at the centre pixel n = +z; l = (sin 60, 0, cos 60): n.l = 0.5
+        s.lights[0].direction = -rt::vec3(std::sqrt(rt::real(3)) / 2, 0, rt::real(0.5));
+        check_color(shade_at(s, 0, 0), 0.7 * 1.0 * 0.5, 0.5 * 0.9 * 0.5, 0.3 * 0.8 * 0.5);
+    }
+    SUBCASE("specular only: kd = 0, Ia = 0, the same side light: n.h = cos 30 degrees")
+    {
+        s.materials[0].kd = rt::color(0.0f);
+        s.ambient = rt::color(0.0f);
+        s.lights[0].direction = -rt::vec3(std::sqrt(rt::real(3)) / 2, 0, rt::real(0.5));
+        const double spec = 0.4 * std::pow(std::cos(3.14159265358979323846 / 6), 20);
+        check_color(shade_at(s, 0, 0), spec * 1.0, spec * 0.9, spec * 0.8);
+    }
+}
+
+TEST_CASE("lights add: two lights give the sum of each alone")
+{
+    rt::scene one = one_sphere_scene();
+    rt::scene other = one_sphere_scene();
+    other.lights[0].direction = {-1, -1, -1};
+    other.lights[0].intensity = {0.2f, 0.5f, 0.1f};
+    rt::scene both = one;
+    both.lights.push_back(other.lights[0]);
+    const rt::color ambient = test_material().ka * one.ambient;
+    const rt::color a = shade_at(one, 0.2, 0.3), b = shade_at(other, 0.2, 0.3), sum = shade_at(both, 0.2, 0.3);
+    check_color(sum, a.r + b.r - ambient.r, a.g + b.g - ambient.g, a.b + b.b - ambient.b);
+}
+
+TEST_CASE("point lights: no falloff by default, as in the book; 1/r^2 with the option")
+{
+    rt::scene s = one_sphere_scene();
+    s.lights[0].kind = rt::light_kind::point;
+    s.lights[0].position = {0, 0, 5}; // 4 units above the top point (0, 0, 1)
+    s.materials[0].ks = rt::color(0.0f);
+    s.ambient = rt::color(0.0f);
+    const rt::ray r{rt::vec3(0, 0, 10), rt::vec3(0, 0, -1)};
+    rt::hit_record hit;
+    REQUIRE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit));
+    check_color(rt::direct_lighting(s, hit, r.direction, always_visible), 0.7, 0.45, 0.24);
+    rt::shading_options falloff;
+    falloff.light_falloff = true;
+    check_color(rt::direct_lighting(s, hit, r.direction, always_visible, falloff), 0.7 / 16, 0.45 / 16, 0.24 / 16);
+}
+
+TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes negative")
+{
+    rt::material m;
+    m.kd = rt::color(0.0f);
+    m.ks = {0.5f, 0.25f, 1.0f};
+    m.p = 100;
+    const rt::vec3 n(0, 1, 0);
+    const rt::vec3 l = glm::normalize(rt::vec3(1, 1, 0));
+    const rt::vec3 mirror = glm::normalize(rt::vec3(-1, 1, 0)); // v = the mirror direction of l: h = n
+    check_color(rt::blinn_phong(m, n, mirror, l, rt::color(2.0f)), 1.0, 0.5, 2.0);
+    // away from the mirror direction the highlight falls: n.h < 1
+    const rt::color off = rt::blinn_phong(m, n, glm::normalize(rt::vec3(-1, 2, 0)), l, rt::color(2.0f));
+    CHECK(off.r < 1.0f);
+    CHECK(off.r > 0.0f);
+    // a light below the surface: n.l < 0 clamps the diffuse term to 0
+    m.kd = rt::color(1.0f);
+    m.ks = rt::color(0.0f);
+    const rt::color below = rt::blinn_phong(m, n, n, glm::normalize(rt::vec3(1, -1, 0)), rt::color(1.0f));
+    check_color(below, 0, 0, 0);
+}
+
+TEST_CASE("the default material shades shapes without a material")
+{
+    rt::scene s = one_sphere_scene();
+    std::get<rt::sphere>(s.shapes[0]).material = -1;
+    s.lights.clear();
+    const rt::color L = shade_at(s, 0, 0);
+    const rt::color expected = s.default_material.ka * s.ambient;
+    check_color(L, expected.r, expected.g, expected.b);
+}
