@@ -215,6 +215,16 @@ TEST_CASE("Reinhard tone map x / (1 + x) at known points")
     }
 }
 
+TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel; the tone map does not")
+{
+    // a single overflowing sample (inf radiance) must come out white, not black
+    const float inf = std::numeric_limits<float>::infinity();
+    const float naive = inf / (1.0f + inf);
+    CHECK(std::isnan(naive));                    // inf / inf
+    CHECK(int(rt::quantize(rt::srgb_encode(naive))) == 0);           // NaN is stored as 0: black
+    CHECK(int(rt::quantize(rt::srgb_encode(rt::tonemap_reinhard(inf)))) == 255); // the limit 1: white
+}
+
 TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays there")
 {
     // T(x) = x(2.51 x + 0.03) / (x(2.43 x + 0.59) + 0.14)
@@ -273,6 +283,33 @@ TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
     }
     // the decode side's own known point: v = 0.04045 is x = 0.04045 / 12.92
     CHECK(rt::srgb_decode(0.04045f) == doctest::Approx(0.04045 / 12.92).epsilon(1e-6));
+}
+
+TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shadows")
+{
+    // by hand: x = 0.001 gives sRGB 12.92 x = 0.01292 -> byte 3, but
+    // 0.001^(1/2.2) = 0.0433 -> byte 11; at mid-grey 0.18 the two are 118 and 117
+    CHECK(int(rt::quantize(rt::srgb_encode(0.001f))) == 3);
+    CHECK(int(rt::quantize(rt::gamma_encode(0.001f, 2.2f))) == 11);
+    CHECK(int(rt::quantize(rt::srgb_encode(0.18f))) == 118);
+    CHECK(int(rt::quantize(rt::gamma_encode(0.18f, 2.2f))) == 117);
+    int worst = 0;
+    float worst_x = 0;
+    int worst_above_tenth = 0;
+    for (int k = 0; k <= 100000; ++k) {
+        const float x = float(k) / 100000;
+        const int d = std::abs(int(rt::quantize(rt::gamma_encode(x, 2.2f))) - int(rt::quantize(rt::srgb_encode(x))));
+        if (d > worst) {
+            worst = d;
+            worst_x = x;
+        }
+        if (x >= 0.1f)
+            worst_above_tenth = std::max(worst_above_tenth, d);
+    }
+    CAPTURE(worst_x);
+    CHECK(worst == 9);           // near x = 0.0013, where sRGB is still on its linear segment
+    CHECK(worst_x < 0.003f);
+    CHECK(worst_above_tenth <= 2);
 }
 
 TEST_CASE("plain gamma: x^(1/gamma), gamma 1 stores linear values")
@@ -488,6 +525,9 @@ TEST_CASE("atomic output: a write that fails half-way leaves the earlier file in
     CHECK_THROWS_AS(rt::save_image(folder.path / "missing-folder" / "x.png", first, rt::encoding{}), rt::error);
     CHECK_THROWS_AS(rt::save_image(folder.path, first, rt::encoding{}), rt::error); // a folder, not a file
     CHECK_THROWS_AS(rt::save_image(folder.path / "x.jpg", first, rt::encoding{}), rt::error);
+    CHECK_THROWS_AS(rt::check_image_output(folder.path / "x.jpg"), rt::error); // checked before rendering
+    CHECK_THROWS_AS(rt::check_image_output(folder.path / "missing-folder" / "x.png"), rt::error);
+    CHECK_NOTHROW(rt::check_image_output(folder.path / "next.PNG"));
     CHECK(read_all(target) == before);
 }
 

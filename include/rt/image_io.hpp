@@ -138,9 +138,7 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
     return img;
 }
 
-namespace detail {
-
-/// The lower-case extension of `path` (".png"), or an error naming the formats.
+/// The lower-case extension of `path` (".png", ".ppm" or ".pfm"), or an error naming the formats.
 inline std::string image_format_of(const std::filesystem::path& path)
 {
     std::string extension = path.extension().string();
@@ -152,6 +150,16 @@ inline std::string image_format_of(const std::filesystem::path& path)
                         "'; name the output file with one of them");
     return extension;
 }
+
+/// Throws rt::error unless `path` names an image format rt writes and a file
+/// can be created there: call it before a long render, not after.
+inline void check_image_output(const std::filesystem::path& path)
+{
+    image_format_of(path);
+    check_writable(path);
+}
+
+namespace detail {
 
 /// Writes `img` to `path` atomically; `write_8bit_ppm(out)` and `rgb8()` give
 /// the 8-bit encodings, PFM is written linear.
