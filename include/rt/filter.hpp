@@ -80,10 +80,9 @@ inline double filter_value(const filter& f, double x)
     switch (f.kind) {
     case filter_kind::box: return 1;
     case filter_kind::tent: return 1 - ax / r;
-    case filter_kind::gaussian: {
-        const double s = r / 3;
-        return std::exp(-x * x / (2 * s * s)) - std::exp(-r * r / (2 * s * s));
-    }
+    case filter_kind::gaussian:
+        // s = r / 3, so x^2 / (2 s^2) = 4.5 (x / r)^2 and the value at the radius is exp(-4.5)
+        return std::exp(-4.5 * (x / r) * (x / r)) - std::exp(-4.5);
     case filter_kind::mitchell: return mitchell_netravali(2 * x / r, 1.0 / 3, 1.0 / 3);
     }
     return 0;

@@ -166,63 +166,84 @@ struct tile_rect {
     int x0, x1, y0, y1; ///< in full-image pixels, columns from the left, rows from the top
 };
 
-/// One sample's film position and radiance, kept while a tile is filtered.
-struct film_sample {
-    vec2 film;
-    color radiance;
+/// A worker's buffers, kept from tile to tile so that memory is not
+/// allocated (and page-faulted in) again for every tile.
+struct tile_scratch {
+    std::vector<color> radiances;
+    std::vector<double> weight_x, weight_y;
+    std::vector<vec2> offsets;
 };
 
 /// Renders one tile into `out` (whose top-left pixel is the full image's (origin_x, origin_y)).
+///
+/// Two passes. First every sample of the tile and its border: its radiance,
+/// and its filter weights f(dx) and f(dy) for each of the 2 reach + 1 columns
+/// and rows of pixel centres it can touch (the filter is separable, so the
+/// (2 reach + 1)^2 weights of a sample are products of these; computing them
+/// once per sample instead of once per sample and pixel saves most of the
+/// filtering work of a wide filter). Then each pixel's weighted average.
 template <class RaySource, class Radiance>
 std::uint64_t render_tile(const render_options& o, const tile_rect& tile, const RaySource& ray_at,
                           const Radiance& radiance, image& out, int origin_x, int origin_y,
-                          std::uint64_t& extra_rays)
+                          tile_scratch& scratch, std::uint64_t& extra_rays)
 {
     const int reach = filter_reach(o.reconstruction);
+    const std::size_t span = std::size_t(2 * reach + 1);
     const int spp = effective_samples(o.sampler, o.samples_per_pixel);
     // the pixels whose samples this tile needs: the tile and a border, inside the full image
     const int qx0 = std::max(0, tile.x0 - reach), qx1 = std::min(o.width, tile.x1 + reach);
     const int qy0 = std::max(0, tile.y0 - reach), qy1 = std::min(o.height, tile.y1 + reach);
-    const int region_width = qx1 - qx0;
-    std::vector<film_sample> samples(std::size_t(region_width) * std::size_t(qy1 - qy0) * std::size_t(spp));
-    std::vector<vec2> offsets;
+    const std::size_t region_width = std::size_t(qx1 - qx0);
+    const std::size_t count = region_width * std::size_t(qy1 - qy0) * std::size_t(spp);
+    std::vector<color>& radiances = scratch.radiances;
+    std::vector<double>& weight_x = scratch.weight_x;
+    std::vector<double>& weight_y = scratch.weight_y;
+    std::vector<vec2>& offsets = scratch.offsets;
+    radiances.resize(count); // every entry is written below before it is read
+    weight_x.resize(count * span);
+    weight_y.resize(count * span);
+    auto first_sample = [&](int qx, int qy) {
+        return (std::size_t(qy - qy0) * region_width + std::size_t(qx - qx0)) * std::size_t(spp);
+    };
     std::uint64_t camera_rays = 0;
     for (int qy = qy0; qy < qy1; ++qy) {
         const int row_from_bottom = o.height - 1 - qy;
         for (int qx = qx0; qx < qx1; ++qx) {
             const std::uint64_t pixel_index = std::uint64_t(qy) * std::uint64_t(o.width) + std::uint64_t(qx);
             pixel_samples(o.sampler, o.samples_per_pixel, o.seed, pixel_index, offsets);
-            film_sample* slot =
-                &samples[(std::size_t(qy - qy0) * std::size_t(region_width) + std::size_t(qx - qx0)) * std::size_t(spp)];
             for (int k = 0; k < spp; ++k) {
+                const std::size_t n = first_sample(qx, qy) + std::size_t(k);
                 sample_context ctx{qx, qy, k, vec2(real(qx) + offsets[std::size_t(k)].x,
                                                    real(row_from_bottom) + offsets[std::size_t(k)].y),
                                    seeded_generator(o.seed, pixel_index, std::uint64_t(k) + 1, integrator_stream), 0};
-                slot[k].film = ctx.film;
-                slot[k].radiance = radiance(ray_at(ctx.film.x, ctx.film.y), ctx);
+                radiances[n] = radiance(ray_at(ctx.film.x, ctx.film.y), ctx);
                 extra_rays += ctx.rays;
                 ++camera_rays;
+                // weights towards the centres of pixel columns qx - reach + j and
+                // rows qy - reach + j (rows count from the top, the film from the bottom)
+                for (std::size_t j = 0; j < span; ++j) {
+                    const int px = qx - reach + int(j), py = qy - reach + int(j);
+                    weight_x[n * span + j] = filter_value(o.reconstruction, double(ctx.film.x) - (double(px) + 0.5));
+                    weight_y[n * span + j] =
+                        filter_value(o.reconstruction, double(ctx.film.y) - (double(o.height - 1 - py) + 0.5));
+                }
             }
         }
     }
-    // gather: each pixel's weighted average over its neighbourhood, in a fixed order
-    for (int py = tile.y0; py < tile.y1; ++py) {
-        const double cy = double(o.height - 1 - py) + 0.5;
+    // each pixel's weighted average over its neighbourhood, in a fixed order
+    for (int py = tile.y0; py < tile.y1; ++py)
         for (int px = tile.x0; px < tile.x1; ++px) {
-            const double cx = double(px) + 0.5;
             double sum_r = 0, sum_g = 0, sum_b = 0, sum_w = 0;
             for (int qy = std::max(qy0, py - reach); qy < std::min(qy1, py + reach + 1); ++qy)
                 for (int qx = std::max(qx0, px - reach); qx < std::min(qx1, px + reach + 1); ++qx) {
-                    const film_sample* slot = &samples[(std::size_t(qy - qy0) * std::size_t(region_width) +
-                                                        std::size_t(qx - qx0)) * std::size_t(spp)];
-                    for (int k = 0; k < spp; ++k) {
-                        const double w = filter_weight(o.reconstruction, double(slot[k].film.x) - cx,
-                                                       double(slot[k].film.y) - cy);
+                    const std::size_t jx = std::size_t(px - qx + reach), jy = std::size_t(py - qy + reach);
+                    for (std::size_t n = first_sample(qx, qy), end = n + std::size_t(spp); n < end; ++n) {
+                        const double w = weight_x[n * span + jx] * weight_y[n * span + jy];
                         if (w == 0)
                             continue;
-                        sum_r += w * double(slot[k].radiance.r);
-                        sum_g += w * double(slot[k].radiance.g);
-                        sum_b += w * double(slot[k].radiance.b);
+                        sum_r += w * double(radiances[n].r);
+                        sum_g += w * double(radiances[n].g);
+                        sum_b += w * double(radiances[n].b);
                         sum_w += w;
                     }
                 }
@@ -232,7 +253,6 @@ std::uint64_t render_tile(const render_options& o, const tile_rect& tile, const 
                                            : color(0.0f);
             out.at(px - origin_x, py - origin_y) = value;
         }
-    }
     return camera_rays;
 }
 
@@ -274,6 +294,7 @@ render_result render(const render_options& options, const RaySource& ray_at, con
 
     auto worker = [&] {
         try {
+            detail::tile_scratch scratch;
             for (;;) {
                 if (failed.load())
                     return;
@@ -283,7 +304,7 @@ render_result render(const render_options& options, const RaySource& ray_at, con
                 const detail::tile_rect& tile = tiles[index];
                 std::uint64_t extra = 0;
                 const std::uint64_t camera =
-                    detail::render_tile(options, tile, ray_at, radiance, result.pixels, area.x0, area.y0, extra);
+                    detail::render_tile(options, tile, ray_at, radiance, result.pixels, area.x0, area.y0, scratch, extra);
                 camera_rays.fetch_add(camera);
                 extra_rays.fetch_add(extra);
                 pixels_done.fetch_add(std::size_t(tile.x1 - tile.x0) * std::size_t(tile.y1 - tile.y0));
