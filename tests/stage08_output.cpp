@@ -217,7 +217,7 @@ TEST_CASE("Reinhard tone map x / (1 + x) at known points")
     }
 }
 
-TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel; the tone map does not")
+TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel, the tone map does not")
 {
     // a single overflowing sample (inf radiance) must come out white, not black
     const float inf = std::numeric_limits<float>::infinity();
@@ -549,7 +549,7 @@ TEST_CASE("pcg32 reproduces O'Neill's reference output (pcg32-demo, seed 42, str
     CHECK(rng.next_u32() == 0xcbed606eu);
 }
 
-TEST_CASE("pcg32 floats are uniform on [0, 1) and next_below has no modulo bias")
+TEST_CASE("pcg32 floats are uniform in 0 <= u < 1 and next_below has no modulo bias")
 {
     rt::pcg32 rng(2024, 1);
     const int n = 200000;
@@ -617,7 +617,7 @@ TEST_CASE("center and grid samplers place samples at cell centres")
         }
 }
 
-TEST_CASE("jittered: one sample in every cell; every sampler stays inside [0, 1)^2")
+TEST_CASE("jittered: one sample in every cell, and every sampler stays inside the unit pixel square")
 {
     std::vector<rt::vec2> s;
     for (std::uint64_t pixel = 0; pixel < 200; ++pixel) {
@@ -919,7 +919,7 @@ TEST_CASE("a half-covered pixel converges to its coverage, jittered faster than 
     CHECK(jittered_error.back() * 2.5 < random_error.back());
 }
 
-TEST_CASE("progress: reported from the calling thread, complete at the end; rays counted")
+TEST_CASE("progress: reported from the calling thread, complete at the end, rays counted")
 {
     rt::render_options options;
     options.width = 40;
