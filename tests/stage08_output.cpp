@@ -997,6 +997,11 @@ TEST_CASE("render options are checked, one line each")
     o.crop = rt::crop_window{0, 640, 0, 480};
     CHECK(message(o).empty());
     o = ok();
+    o.width = o.height = 65536; // 2^32 pixels: too many for memory, unless cropped
+    CHECK(message(o).find("expected at most 268435456 pixels to render") != std::string::npos);
+    o.crop = rt::crop_window{0, 1024, 60000, 61024};
+    CHECK(message(o).empty());
+    o = ok();
     o.reconstruction.radius = 0;
     CHECK(message(o).find("expected a filter radius in (0, 16] pixels") != std::string::npos);
     CHECK(message(o).find('\n') == std::string::npos);

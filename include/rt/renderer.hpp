@@ -129,6 +129,11 @@ inline void check_render_options(const render_options& o)
         fail("a tile size of at least 1", std::to_string(o.tile_size));
     if (!(o.reconstruction.radius > 0) || !(o.reconstruction.radius <= 16))
         fail("a filter radius in (0, 16] pixels", std::to_string(o.reconstruction.radius));
+    const crop_window area = o.crop.value_or(crop_window{0, o.width, 0, o.height});
+    const std::int64_t max_pixels = std::int64_t(1) << 28;
+    if (std::int64_t(area.x1 - area.x0) * std::int64_t(area.y1 - area.y0) > max_pixels)
+        fail("at most " + std::to_string(max_pixels) + " pixels to render (use --crop to split the image)",
+             std::to_string(area.x1 - area.x0) + "x" + std::to_string(area.y1 - area.y0));
     if (o.crop) {
         const crop_window& c = *o.crop;
         if (c.x0 < 0 || c.y0 < 0 || c.x1 > o.width || c.y1 > o.height || c.x0 >= c.x1 || c.y0 >= c.y1)

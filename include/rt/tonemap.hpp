@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 
+#include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
 #include "vec.hpp"
 
 namespace rt {

@@ -19,6 +19,8 @@
 
 #include <cmath>
 
+#include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
+
 namespace rt {
 
 /// The sRGB encoding of a linear value x in [0, 1] (IEC 61966-2-1).
