@@ -1,10 +1,15 @@
 // image_io.hpp - store an image: 8-bit PPM and PNG, and float PFM.
 //
-// The course: "RGB floats internally, RGB bytes stored". Before storing, each
-// linear channel is clamped to [0, 1], gamma-encoded and quantised to 8 bits
-// (stage 08 adds exposure, tone maps and the exact sRGB curve). PFM keeps the
-// linear floats exactly, for depth and normal buffers and for comparisons.
-// Every writer goes through write_atomically (atomic_file.hpp).
+// The course: "RGB floats internally, RGB bytes stored". Two ways to bytes:
+//  - the plain one of the early stages (to_byte, to_rgb8, write_ppm with a
+//    gamma): clamp each linear channel to [0, 1], encode with a plain gamma,
+//    quantise to 8 bits. It needs nothing from stage 08, so stage programs 02-07
+//    can save images before the student has written the colour pipeline.
+//  - the colour pipeline of stage 08 (encoding.hpp: exposure, tone map, sRGB or
+//    gamma, quantisation), selected by passing an rt::encoding.
+// PFM keeps the linear floats exactly (no exposure, no tone map), for depth and
+// normal buffers, for comparisons and for merging. Every writer goes through
+// write_atomically (atomic_file.hpp).
 #pragma once
 
 #include <algorithm>
@@ -20,6 +25,7 @@
 
 #include "atomic_file.hpp"
 #include "detail/stb_png.hpp"
+#include "encoding.hpp"
 #include "error.hpp"
 #include "image.hpp"
 
@@ -54,6 +60,14 @@ inline void write_ppm(std::ostream& out, const image& img, float gamma = 2.2f)
     const std::vector<std::uint8_t> bytes = to_rgb8(img, gamma);
     out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     // RT_EXERCISE_END
+}
+
+/// Binary PPM of the image through the colour pipeline (encoding.hpp).
+inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
+{
+    out << "P6\n" << img.width << ' ' << img.height << "\n255\n";
+    const std::vector<std::uint8_t> bytes = encode_image(img, enc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 /// PNG bytes of 8-bit RGB pixels, through the vendored stb_image_write.
@@ -124,27 +138,64 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
     return img;
 }
 
-/// Writes the image to `path`, atomically, in the format its extension names:
-/// .png and .ppm (8-bit, gamma-encoded) or .pfm (linear floats).
-inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
+/// The lower-case extension of `path` (".png", ".ppm" or ".pfm"), or an error naming the formats.
+inline std::string image_format_of(const std::filesystem::path& path)
 {
     std::string extension = path.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    if (extension == ".ppm") {
-        write_atomically(path, [&](std::ostream& out) { write_ppm(out, img, gamma); });
-    } else if (extension == ".pfm") {
-        write_atomically(path, [&](std::ostream& out) { write_pfm(out, img); });
-    } else if (extension == ".png") {
-        const std::vector<std::uint8_t> png = encode_png(img.width, img.height, to_rgb8(img, gamma));
-        write_atomically(path, [&](std::ostream& out) {
-            out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-        });
-    } else {
+    if (extension != ".ppm" && extension != ".pfm" && extension != ".png")
         throw error(source_location{path.string()},
                     "expected an image extension .png, .ppm or .pfm, found '" + extension +
                         "'; name the output file with one of them");
+    return extension;
+}
+
+/// Throws rt::error unless `path` names an image format rt writes and a file
+/// can be created there: call it before a long render, not after.
+inline void check_image_output(const std::filesystem::path& path)
+{
+    image_format_of(path);
+    check_writable(path);
+}
+
+namespace detail {
+
+/// Writes `img` to `path` atomically; `write_8bit_ppm(out)` and `rgb8()` give
+/// the 8-bit encodings, PFM is written linear.
+template <class PpmWriter, class Rgb8>
+void save_by_extension(const std::filesystem::path& path, const image& img, PpmWriter&& write_8bit_ppm, Rgb8&& rgb8)
+{
+    const std::string extension = image_format_of(path);
+    if (extension == ".ppm") {
+        write_atomically(path, write_8bit_ppm);
+    } else if (extension == ".pfm") {
+        write_atomically(path, [&](std::ostream& out) { write_pfm(out, img); });
+    } else {
+        const std::vector<std::uint8_t> png = encode_png(img.width, img.height, rgb8());
+        write_atomically(path, [&](std::ostream& out) {
+            out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        });
     }
+}
+
+} // namespace detail
+
+/// Writes the image to `path`, atomically, in the format its extension names:
+/// .png and .ppm (8-bit: clamped, plain gamma, see to_byte) or .pfm (linear floats).
+/// This is the early stages' writer; stage 08 passes an rt::encoding instead.
+inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
+{
+    detail::save_by_extension(
+        path, img, [&](std::ostream& out) { write_ppm(out, img, gamma); }, [&] { return to_rgb8(img, gamma); });
+}
+
+/// Writes the image to `path`, atomically: .png and .ppm through the colour
+/// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
+inline void save_image(const std::filesystem::path& path, const image& img, const encoding& enc)
+{
+    detail::save_by_extension(
+        path, img, [&](std::ostream& out) { write_ppm(out, img, enc); }, [&] { return encode_image(img, enc); });
 }
 
 } // namespace rt

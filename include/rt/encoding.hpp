@@ -1,0 +1,75 @@
+// encoding.hpp - the colour pipeline: linear radiance to stored bytes (stage 08).
+//
+// The course: "RGB floats internally, RGB bytes stored". Each channel of each
+// pixel goes, in this order, through
+//     exposure  ->  tone map  ->  transfer function  ->  quantisation
+//     c 2^stops     [0,inf)->[0,1]  sRGB or gamma        round(255 v)
+// (tonemap.hpp, transfer.hpp and quantize below). Quantisation rounds to the
+// nearest of the 256 levels k / 255, so every level is reached exactly and the
+// error is at most half a level.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
+#include "image.hpp"
+#include "tonemap.hpp"
+#include "transfer.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+enum class transfer_kind { srgb, gamma };
+
+/// How linear colours become bytes: the settings of the whole pipeline.
+struct encoding {
+    float exposure = 0.0f;                       ///< stops: colours are scaled by 2^exposure
+    tonemap_kind tonemap = tonemap_kind::clamp;  ///< the curve from [0, inf) to [0, 1]
+    transfer_kind transfer = transfer_kind::srgb;
+    float gamma = 2.2f;                          ///< used when transfer == gamma
+};
+
+/// An encoded value in [0, 1] to one of the 256 byte levels: round(255 v),
+/// halves rounded up; values below 0 (and NaN) give 0, above 1 give 255.
+inline std::uint8_t quantize(float v)
+{
+    // RT_EXERCISE_BEGIN(stage08: quantise to 8 bits)
+    if (!(v > 0.0f))
+        return 0;
+    if (v >= 1.0f)
+        return 255;
+    return std::uint8_t(v * 255.0f + 0.5f); // in [0.5, 255.5): truncation rounds
+    // RT_EXERCISE_END
+}
+
+/// One linear channel through the whole pipeline, to its display value in [0, 1] (before quantising).
+inline float encode_channel(float linear, const encoding& enc)
+{
+    const float exposed = linear * std::exp2(enc.exposure);
+    const float mapped = apply_tonemap(exposed, enc.tonemap);
+    return enc.transfer == transfer_kind::srgb ? srgb_encode(mapped) : gamma_encode(mapped, enc.gamma);
+}
+
+/// One linear colour to its three stored bytes.
+inline std::array<std::uint8_t, 3> encode_color(const color& linear, const encoding& enc)
+{
+    return {quantize(encode_channel(linear.r, enc)), quantize(encode_channel(linear.g, enc)),
+            quantize(encode_channel(linear.b, enc))};
+}
+
+/// The image as 8-bit RGB bytes through the pipeline, top row first (3 bytes a pixel).
+inline std::vector<std::uint8_t> encode_image(const image& img, const encoding& enc)
+{
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(img.pixels.size() * 3);
+    for (const color& c : img.pixels) {
+        const std::array<std::uint8_t, 3> rgb = encode_color(c, enc);
+        bytes.insert(bytes.end(), rgb.begin(), rgb.end());
+    }
+    return bytes;
+}
+
+} // namespace rt
