@@ -264,6 +264,7 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
     line = 1
     i, n = 0, len(text)
     line_start = 0
+    rejected = {"begin": False}  # the last BEGIN was refused: its END is not reported again
 
     def err(at_line: int, column: int, expected: str, found: str, hint: str = "") -> None:
         message = f"{path}:{at_line}:{column}: expected {expected}, found {found}"
@@ -298,6 +299,8 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
                 hint = open_region["hint"]
                 if HINT_RE.match(body):
                     hint["active"] = True
+                elif not comment.startswith("  "):
+                    hint["active"] = False  # a continuation line is indented further
                 if hint["active"]:
                     open_region["hints"].append(comment.rstrip())
             return
@@ -309,6 +312,7 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
         end = END_RE.match(body)
         if begin:
             inside = BEGIN_INSIDE_RE.match(begin.group("inside"))
+            rejected["begin"] = True
             if not inside:
                 err(line, column, '"RT_EXERCISE_BEGIN(stageNN: short title)"', f'"{body}"',
                     "two digits after stage, a colon, then the title")
@@ -328,11 +332,13 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
             if top.region_closed_at:
                 err(line, column, "one region per function body", "a second RT_EXERCISE_BEGIN",
                     f"this function's region ended at line {abs(top.region_closed_at)}")
+                top.region_closed_at = -abs(top.region_closed_at)  # no more reports for this body
                 return
             if top.code_seen:
                 err(line, column, "RT_EXERCISE_BEGIN first in the function body", "code before it",
                     "a region is the whole body: move the code inside the region")
                 return
+            rejected["begin"] = False
             if stage not in known_stages:
                 err(line, column, "a stage that has a test suite tests/stageNN_*.cpp",
                     f"stage {stage:02d}, which has none",
@@ -356,9 +362,10 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
                     err(line, column, "RT_EXERCISE_END in the function body where its region began "
                         f"(line {owner.region['line']})", "it inside a nested block",
                         "put the END marker just before the function's closing brace")
-                else:
+                elif not rejected["begin"]:
                     err(line, column, "RT_EXERCISE_END after an RT_EXERCISE_BEGIN", "no open region",
                         "add the BEGIN marker or remove this one")
+                rejected["begin"] = False
                 return
             r = function.region
             sig = function.signature
