@@ -749,9 +749,6 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(note)
             return 0
         text = table(suites)
-        print(text)
-        if note:
-            print(note)
         results = gradescope_results(suites, visibility, text + ("\n\n" + note if note else ""),
                                      time.monotonic() - started)
         write_atomically(results_path, (json.dumps(results, indent=2) + "\n").encode("utf-8"))
@@ -761,6 +758,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         buffer = io.BytesIO()
         tree.write(buffer, encoding="utf-8", xml_declaration=True)
         write_atomically(junit_path, buffer.getvalue())
+        print(text + ("\n" + note if note else ""), flush=True)
         log(f"grade: wrote {results_path} and {junit_path}")
         return 0
     except GradeError as e:
