@@ -739,7 +739,7 @@ private:
                     for (int c = 0; c < 4; ++c)
                         if (mask & (1 << c))
                             hits[n++] = entry{node.child[c], node.count[c], tnear[c]};
-                    for (int i = 1; i < n; ++i)
+                    for (int i = 1; i < n && !any_hit; ++i) // any hit: no order needed
                         for (int j = i; j > 0 && hits[j].tnear < hits[j - 1].tnear; --j) {
                             const entry swap = hits[j];
                             hits[j] = hits[j - 1];

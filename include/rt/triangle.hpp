@@ -203,8 +203,13 @@ inline bool intersect_watertight(const watertight_ray& w, const real* v, real tm
     const real Cy = (v[6 + ky] - w.p[ky]) - w.Sy * Cz;
 
     // scaled barycentric coordinates: the edge functions
+    // A computed edge function is never of the wrong sign: rounding is monotonic,
+    // so fl(a b) - fl(c d) keeps the sign of a b - c d or gives 0. Two of
+    // opposite signs therefore already mean a miss, before W is computed.
     real U = Cx * By - Cy * Bx;
     real V = Ax * Cy - Ay * Cx;
+    if ((U < 0 && V > 0) || (U > 0 && V < 0))
+        return false;
     real W = Bx * Ay - By * Ax;
     if constexpr (std::is_same_v<real, float>) {
         if (U == 0 || V == 0 || W == 0) { // on an edge in float: decide in double (the products are exact there)
