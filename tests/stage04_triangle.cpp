@@ -738,6 +738,34 @@ TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last 
     CHECK(rec.primitive == 999);
 }
 
+TEST_CASE("the BVH is the same whatever the number of threads that build it")
+{
+    std::mt19937 random(5);
+    const rt::scene s = random_scene(random, 2000, 6000, true); // large enough to be split among threads
+    rt::bvh_options one, four;
+    one.threads = 1;
+    four.threads = 4;
+    const rt::accelerator a(s, rt::accelerator_kind::bvh, one), b(s, rt::accelerator_kind::bvh, four);
+    const std::vector<rt::bvh_node>& na = a.tree().nodes();
+    const std::vector<rt::bvh_node>& nb = b.tree().nodes();
+    REQUIRE(na.size() == nb.size());
+    bool same = true;
+    for (std::size_t i = 0; i < na.size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
+            for (int row = 0; row < 6; ++row)
+                same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
+        }
+    const std::vector<rt::packed_primitive>& pa = a.tree().primitives();
+    const std::vector<rt::packed_primitive>& pb = b.tree().primitives();
+    REQUIRE(pa.size() == pb.size());
+    for (std::size_t i = 0; i < pa.size(); ++i)
+        same = same && pa[i].id == pb[i].id;
+    CHECK(same);
+    CHECK(a.stats().nodes == b.stats().nodes);
+    CHECK(a.stats().depth == b.stats().depth);
+}
+
 TEST_CASE("an accelerator of an empty scene or of one shape, and auto picks the flat list for tiny scenes")
 {
     const rt::scene empty;
