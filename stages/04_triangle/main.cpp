@@ -17,6 +17,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <rt/camera.hpp>
@@ -30,14 +31,15 @@
 namespace {
 
 const char* usage =
-    "usage: stage04_triangle INPUT [-o OUTPUT] [--mode normals|depth] [--size WxH]\n"
+    "usage: stage04_triangle INPUT [-o OUTPUT] [--mode normals|geometric|depth] [--size WxH]\n"
     "                        [--accel flat|bvh|auto] [--view X Y Z] [--repeat N]\n"
     "       stage04_triangle --crossover\n"
     "Renders INPUT, an OBJ mesh (seen from outside, framed by its bounds) or a .scene\n"
     "file (its camera and shapes), one ray per pixel, and prints the build time, the\n"
     "BVH's size and the rays per second of one thread.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default triangle.png); a .pfm of depth holds t\n"
-    "  --mode M        normals: (n + 1)/2 of the shading normal (default); depth: near is white\n"
+    "  --mode M        normals: (n + 1)/2 of the shading normal (default); geometric: of the\n"
+    "                  geometric normal; depth: distance, near white, far grey (.pfm: the distance)\n"
     "  --size WxH      image size (default 800x600 for a mesh, the scene's own for a scene)\n"
     "  --accel A       flat, bvh or auto (default auto)\n"
     "  --view X Y Z    direction from the mesh's centre to the camera (default 0 0 1)\n"
@@ -132,7 +134,7 @@ struct render_result {
 };
 
 /// Traces one primary ray per pixel, one thread, and times the tracing.
-render_result trace(const rt::accelerator& world, const rt::ray_generator& gen)
+render_result trace(const rt::accelerator& world, const rt::ray_generator& gen, bool geometric)
 {
     render_result out;
     out.depth.assign(std::size_t(gen.nx) * std::size_t(gen.ny), 0.0f);
@@ -146,7 +148,7 @@ render_result trace(const rt::accelerator& world, const rt::ray_generator& gen)
             if (world.closest_hit(r, 0, rt::infinity, rec)) {
                 const std::size_t at = std::size_t(gen.ny - 1 - j) * std::size_t(gen.nx) + std::size_t(i);
                 out.depth[at] = float(rec.t * glm::length(r.direction));
-                normals[at] = rec.normal;
+                normals[at] = geometric ? rec.geometric_normal : rec.normal;
                 ++out.hits;
             }
         }
@@ -296,8 +298,8 @@ int main(int argc, char** argv)
                 output = args.value_of("-o");
             } else if (arg == "--mode") {
                 mode = args.value_of("--mode");
-                if (mode != "normals" && mode != "depth")
-                    throw rt::error("--mode: expected normals or depth, found '" + mode + "'");
+                if (mode != "normals" && mode != "geometric" && mode != "depth")
+                    throw rt::error("--mode: expected normals, geometric or depth, found '" + mode + "'");
             } else if (arg == "--size") {
                 const std::string size = args.value_of("--size");
                 const std::size_t x = size.find('x');
@@ -336,8 +338,23 @@ int main(int argc, char** argv)
                 width = world_scene.width;
                 height = world_scene.height;
             }
-            std::cout << input << ": " << world_scene.shapes.size() << " shapes (load " << std::setprecision(3)
-                      << seconds_since(load_start) << " s)\n";
+            std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0, dropped = 0;
+            for (const rt::shape& item : world_scene.shapes) {
+                if (std::holds_alternative<rt::sphere>(item))
+                    ++spheres;
+                else if (std::holds_alternative<rt::triangle>(item))
+                    ++triangles;
+                else {
+                    const rt::mesh& m = std::get<rt::mesh>(item);
+                    ++meshes;
+                    mesh_triangles += m.triangles.size();
+                    dropped += m.dropped_degenerate;
+                }
+            }
+            std::cout << input << ": " << spheres << " spheres, " << triangles << " triangles, " << meshes
+                      << " meshes of " << mesh_triangles << " triangles (" << dropped
+                      << " degenerate triangles dropped) (load " << std::setprecision(3) << seconds_since(load_start)
+                      << " s)\n";
         } else {
             rt::obj_result loaded = rt::load_obj(input);
             std::cout << rt::summary(loaded) << " (load " << std::setprecision(3) << seconds_since(load_start)
@@ -364,9 +381,9 @@ int main(int argc, char** argv)
         std::cout << '\n';
 
         const rt::ray_generator gen = rt::make_ray_generator(world_scene.cam, width, height);
-        render_result best = trace(world, gen);
+        render_result best = trace(world, gen, mode == "geometric");
         for (int k = 1; k < repeat; ++k) {
-            render_result again = trace(world, gen);
+            render_result again = trace(world, gen, mode == "geometric");
             if (again.cpu_seconds < best.cpu_seconds)
                 best = std::move(again);
         }
