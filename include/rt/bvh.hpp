@@ -763,6 +763,9 @@ public:
     const std::vector<packed_primitive>& primitives() const { return prims_; }
     const bvh_stats& stats() const { return stats_; }
 
+    /// Whether the node test runs in SSE registers (x86-64 and rt::real = float).
+    static constexpr bool uses_sse = detail::bvh_uses_sse;
+
     /// The deepest binary tree built; a 4-wide node pushes at most 3 children,
     /// so the traversal stack needs 3 entries per level.
     static constexpr int max_depth = 60;

@@ -375,7 +375,8 @@ int main(int argc, char** argv)
         std::cout << std::fixed << std::setprecision(3) << "accelerator: " << rt::to_string(world.kind()) << " over "
                   << world.primitive_count() << " primitives, built in " << build_seconds << " s";
         if (world.kind() == rt::accelerator_kind::bvh)
-            std::cout << "; " << stats.nodes << " nodes (" << sizeof(rt::bvh_node) << " bytes each), "
+            std::cout << "; " << stats.nodes << " 4-wide nodes (" << sizeof(rt::bvh_node) << " bytes each"
+                      << (rt::bvh::uses_sse ? ", tested with SSE" : "") << "), "
                       << stats.leaves << " leaves, depth " << stats.depth << ", SAH cost " << std::setprecision(1)
                       << stats.sah_cost;
         std::cout << '\n';
