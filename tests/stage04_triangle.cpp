@@ -445,6 +445,53 @@ TEST_CASE("a ray spawned from a hit never hits the same surface again at any sca
     }
 }
 
+TEST_CASE("a ray spawned from a sphere hit does not hit the sphere again on its way out")
+{
+    // From inside a sphere every hit is on the far side; a ray spawned outwards
+    // crosses the surface it starts on and must hit nothing.
+    std::mt19937 random(9);
+    std::uniform_real_distribution<real> uniform(-1, 1);
+    auto random_unit = [&] {
+        for (;;) {
+            const vec3 v(uniform(random), uniform(random), uniform(random));
+            const real l2 = glm::dot(v, v);
+            if (l2 > real(0.01) && l2 <= 1)
+                return v / std::sqrt(l2);
+        }
+    };
+    std::size_t spawn_total = 0, naive_total = 0;
+    for (real radius : {real(1e-3), real(1), real(1e3)}) {
+        for (const vec3& center : {vec3(0), vec3(1e4f, -3e3f, 2e3f)}) {
+            rt::scene s;
+            rt::sphere ball;
+            ball.center = center;
+            ball.radius = radius;
+            s.shapes.emplace_back(ball);
+            const rt::accelerator world(s);
+            std::size_t spawned = 0, rehits = 0, naive_rehits = 0;
+            for (int k = 0; k < 1000; ++k) {
+                const rt::ray primary{center + radius * real(0.3) * random_unit(), random_unit()};
+                rt::hit_record rec, next;
+                REQUIRE(world.closest_hit(primary, 0, rt::infinity, rec));
+                vec3 outward = random_unit();
+                if (glm::dot(outward, rec.geometric_normal) > 0)
+                    outward = -outward;
+                ++spawned;
+                rehits += world.closest_hit(rt::spawn_ray(rec, outward), 0, rt::infinity, next) ? 1 : 0;
+                naive_rehits += world.closest_hit(rt::ray{primary.at(rec.t), outward}, 0, rt::infinity, next) ? 1 : 0;
+            }
+            MESSAGE("sphere of radius " << radius << " at " << center.x << ": " << spawned
+                                        << " outward rays, re-hits: spawn_ray " << rehits << ", p + t d " << naive_rehits);
+            CHECK(rehits == 0);
+            spawn_total += rehits;
+            naive_total += naive_rehits;
+        }
+    }
+    CHECK(spawn_total == 0);
+    if (in_float)
+        CHECK(naive_total > 0);
+}
+
 // =============================================================================
 // The slab test (Williams et al. 2005, Ize 2013)
 // =============================================================================
