@@ -691,7 +691,7 @@ TEST_CASE("the BVH and the list return the same closest hit and the same any-hit
         REQUIRE(tree.kind() == rt::accelerator_kind::bvh);
         REQUIRE(tree.stats().nodes > 1);
         std::size_t hits = 0, disagreements = 0, any_disagreements = 0;
-        const std::vector<rt::ray> rays = random_rays(random, 2000);
+        const std::vector<rt::ray> rays = random_rays(random, 1500);
         for (const rt::ray& r : rays) {
             rt::hit_record from_list, from_flat, from_tree;
             const bool list_hit = rt::closest_hit_list(s, r, 0, rt::infinity, from_list);
@@ -861,7 +861,7 @@ TEST_CASE("the BVH agrees hit for hit with the flat list on the Stanford bunny")
     std::mt19937 random(11);
     std::uniform_real_distribution<real> unit(0, 1);
     std::size_t hits = 0, disagreements = 0;
-    const int rays = 200; // the flat list tests all 69451 triangles per ray
+    const int rays = 120; // the flat list tests all 69451 triangles per ray
     for (int k = 0; k < rays; ++k) {
         // from a point around the bunny to a random point in its box
         const vec3 target = box.lo + vec3(unit(random), unit(random), unit(random)) * box.extent();
