@@ -62,22 +62,6 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b)
     return row[b.size()];
 }
 
-/// "did you mean 'x'?" for the known word closest to `word`, or a list of them.
-inline std::string nearest_hint(const std::string& word, const std::vector<std::string>& known)
-{
-    if (known.empty())
-        return "none is declared yet";
-    const auto best = std::min_element(known.begin(), known.end(), [&](const std::string& x, const std::string& y) {
-        return edit_distance(word, x) < edit_distance(word, y);
-    });
-    if (edit_distance(word, *best) <= std::max<std::size_t>(2, word.size() / 3))
-        return "did you mean '" + *best + "'?";
-    std::string list;
-    for (const std::string& name : known)
-        list += (list.empty() ? "" : ", ") + name;
-    return "known: " + list;
-}
-
 /// Shortens what a file contained for an error message, so a message never
 /// dumps file contents: at most 24 printable characters, quoted.
 inline std::string found_text(const std::string& text)
@@ -86,6 +70,35 @@ inline std::string found_text(const std::string& text)
     for (char c : text.substr(0, 24))
         shown += (c >= 32 && c < 127) ? c : '?';
     return "'" + shown + (text.size() > 24 ? "...'" : "'");
+}
+
+/// "did you mean 'x'?" for the known word closest to `word`, or a short list of
+/// them. The work and the message are bounded whatever the file declares: the
+/// distance compares the first 64 characters of each word (a typo is found
+/// there), and the list shows at most 8 names, each shortened by found_text.
+inline std::string nearest_hint(const std::string& word, const std::vector<std::string>& known)
+{
+    if (known.empty())
+        return "none is declared yet";
+    const std::size_t compared = 64;
+    const std::string prefix = word.substr(0, compared);
+    std::size_t best = 0, best_distance = std::numeric_limits<std::size_t>::max();
+    for (std::size_t i = 0; i < known.size(); ++i) {
+        const std::size_t distance = edit_distance(prefix, known[i].substr(0, compared));
+        if (distance < best_distance) {
+            best = i;
+            best_distance = distance;
+        }
+    }
+    if (best_distance <= std::max<std::size_t>(2, prefix.size() / 3))
+        return "did you mean " + found_text(known[best]) + "?";
+    const std::size_t listed = 8;
+    std::string list;
+    for (std::size_t i = 0; i < known.size() && i < listed; ++i)
+        list += (list.empty() ? "" : ", ") + found_text(known[i]);
+    if (known.size() > listed)
+        list += " and " + std::to_string(known.size() - listed) + " more";
+    return "known: " + list;
 }
 
 /// One statement of a scene file, read left to right. Each reader names what it
@@ -287,8 +300,53 @@ inline void parse_camera(statement& line, camera& cam)
 
 namespace detail {
 
+/// The length of the well-formed UTF-8 sequence that starts at text[i], or 0
+/// when the bytes there are not one. The Unicode Standard, Version 15.0,
+/// sec. 3.9, Table 3-7 "Well-Formed UTF-8 Byte Sequences" (also RFC 3629, sec. 4).
+inline std::size_t utf8_length(const std::string& text, std::size_t i)
+{
+    const auto byte = [&](std::size_t k) {
+        return k < text.size() ? unsigned(static_cast<unsigned char>(text[k])) : 0u;
+    };
+    const auto in = [](unsigned b, unsigned low, unsigned high) { return b >= low && b <= high; };
+    const unsigned b0 = byte(i), b1 = byte(i + 1), b2 = byte(i + 2), b3 = byte(i + 3);
+    if (b0 < 0x80)
+        return 1;
+    if (in(b0, 0xC2, 0xDF))
+        return in(b1, 0x80, 0xBF) ? 2 : 0;
+    if (b0 == 0xE0)
+        return in(b1, 0xA0, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (in(b0, 0xE1, 0xEC) || in(b0, 0xEE, 0xEF))
+        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (b0 == 0xED)
+        return in(b1, 0x80, 0x9F) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (b0 == 0xF0)
+        return in(b1, 0x90, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    if (in(b0, 0xF1, 0xF3))
+        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    if (b0 == 0xF4)
+        return in(b1, 0x80, 0x8F) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    return 0;
+}
+
+/// Requires that text[from, to) is text: printable ASCII, tabs, or well-formed
+/// UTF-8 (for names and paths in other languages); control bytes and other
+/// bytes mean the file is not a scene file.
+inline void check_text(const std::string& text, std::size_t from, std::size_t to, const source_location& where)
+{
+    for (std::size_t i = from; i < to;) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        const std::size_t length = (c < 32 && c != '\t' && c != '\r') || c == 127 ? 0 : utf8_length(text, i);
+        if (length == 0 || i + length > to)
+            throw parse_error({where.file, where.line, int(i) + 1}, "plain text (ASCII or UTF-8)",
+                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
+        i += length;
+    }
+}
+
 /// Splits one line into tokens: words separated by blanks, "quoted strings"
-/// (for paths with spaces), and a '#' that starts a comment.
+/// (for paths with spaces), and a '#' that starts a comment (which may hold
+/// anything but is not read).
 inline std::vector<token> tokenize(const std::string& text, const source_location& where)
 {
     std::vector<token> tokens;
@@ -299,19 +357,18 @@ inline std::vector<token> tokenize(const std::string& text, const source_locatio
             ++i;
         } else if (c == '#') {
             break;
-        } else if (c < 32 || c >= 127) {
-            throw parse_error({where.file, where.line, int(i) + 1}, "plain text",
-                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
         } else if (c == '"') {
             const std::size_t close = text.find('"', i + 1);
             if (close == std::string::npos)
                 throw parse_error({where.file, where.line, int(i) + 1}, "a closing '\"'", "the end of the line");
+            check_text(text, i + 1, close, where);
             tokens.push_back({text.substr(i + 1, close - i - 1), int(i) + 1});
             i = close + 1;
         } else {
             const std::size_t start = i;
             while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#')
                 ++i;
+            check_text(text, start, i, where);
             tokens.push_back({text.substr(start, i - start), int(start) + 1});
         }
     }
