@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <istream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -156,7 +157,8 @@ public:
         return real(value);
     }
 
-    int integer(const std::string& what, int low, int high)
+    /// A whole number in [low, high]; `limit_hint` says how to raise `high`.
+    int integer(const std::string& what, int low, int high, const std::string& limit_hint = {})
     {
         if (done())
             throw unexpected("a whole number for " + what);
@@ -166,7 +168,8 @@ public:
         if (status != std::errc() || end != text.data() + text.size())
             throw unexpected("a whole number for " + what);
         if (value < low || value > high)
-            throw unexpected(what + " between " + std::to_string(low) + " and " + std::to_string(high));
+            throw unexpected(what + " between " + std::to_string(low) + " and " + std::to_string(high),
+                             value > high ? limit_hint : std::string());
         ++next_;
         return int(value);
     }
@@ -375,6 +378,24 @@ inline std::vector<token> tokenize(const std::string& text, const source_locatio
     return tokens;
 }
 
+/// Reads the next line of `in` into `text`, without its line break, but never
+/// more than `limit` + 1 characters, so that a file without line breaks cannot
+/// exhaust memory (the caller rejects a line longer than `limit`). Returns
+/// false at the end of the input, as std::getline does.
+inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t limit)
+{
+    text.clear();
+    char c = 0;
+    while (in.get(c)) {
+        if (c == '\n')
+            return true;
+        text += c;
+        if (text.size() > limit)
+            return true;
+    }
+    return !text.empty();
+}
+
 inline int find_material(const scene& s, statement& line)
 {
     const std::string name = line.word("a material name");
@@ -406,7 +427,7 @@ public:
         const source_location where{file_, number, 1};
         if (text.size() > options_.max_line_length)
             throw parse_error(where, "a line of at most " + std::to_string(options_.max_line_length) + " characters",
-                              std::to_string(text.size()), "raise load_options::max_line_length");
+                              "a longer one", "the limit is load_options::max_line_length; raise it if you mean it");
         std::vector<token> tokens = tokenize(text, where);
         if (tokens.empty())
             return;
@@ -451,9 +472,11 @@ private:
         else if (keyword == "background")
             result_.background = line.rgb("background colour");
         else if (keyword == "samples")
-            result_.samples = line.integer("samples per pixel", 1, options_.max_samples);
+            result_.samples = line.integer("samples per pixel", 1, options_.max_samples,
+                                           "the limit is load_options::max_samples; raise it if you mean it");
         else if (keyword == "max_depth")
-            result_.max_depth = line.integer("max_depth", 0, options_.max_depth);
+            result_.max_depth = line.integer("max_depth", 0, options_.max_depth,
+                                             "the limit is load_options::max_depth; raise it if you mean it");
         else
             throw parse_error(line.line_start(), "a keyword", found_text(keyword), nearest_hint(keyword, keywords()));
     }
@@ -621,8 +644,12 @@ inline scene load_scene_stream(std::istream& in, const std::string& name, const 
     scene_reader reader(name, folder, options);
     std::string text;
     int number = 0;
-    while (std::getline(in, text))
+    while (read_bounded_line(in, text, options.max_line_length)) {
+        if (number == std::numeric_limits<int>::max())
+            throw error(source_location{name, number}, "expected at most " + std::to_string(number) +
+                                                           " lines, found more; split the scene");
         reader.read_line(text, ++number);
+    }
     if (in.bad())
         throw error(source_location{name, number}, "reading failed; is the file complete?");
     return reader.finish(number);
@@ -645,6 +672,9 @@ inline scene load_scene(const std::filesystem::path& path, const load_options& o
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw error(source_location{name}, "expected a scene file, found a folder; name the .scene file itself");
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw error(source_location{name}, "expected a scene file, found a device, pipe or socket; "
+                                           "name a .scene file (a special file could block or never end)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw error(source_location{name}, std::filesystem::exists(path, ec)
