@@ -580,13 +580,22 @@ private:
                 translate = line.vector("translate");
         });
         const std::filesystem::path path = relative.is_absolute() ? relative : folder_ / relative;
+        obj_limits limits = options_.obj; // one budget of triangles for all the scene's meshes
+        limits.max_triangles -= triangles_;
         obj_result loaded;
         try {
-            loaded = load_obj(path, options_.obj);
+            loaded = load_obj(path, limits);
         } catch (const error& e) {
             throw parse_error(where, "a loadable OBJ mesh", "an error", e.what());
         }
         mesh& m = loaded.geometry;
+        if (m.triangles.empty())
+            throw parse_error(where, "a mesh with at least one triangle",
+                              m.dropped_degenerate > 0 ? "only " + std::to_string(m.dropped_degenerate) +
+                                                             " degenerate (zero-area) triangle(s)"
+                                                       : "no faces",
+                              "check the OBJ file " + found_text(relative.string()));
+        triangles_ += m.triangles.size();
         m.source = relative.string();
         for (vec3& p : m.positions)
             p = p * scale + translate;
@@ -636,6 +645,7 @@ private:
     bool seen_camera_ = false;
     bool seen_image_ = false;
     int statements_ = 0;
+    std::size_t triangles_ = 0; ///< triangles of the meshes read so far
 };
 
 inline scene load_scene_stream(std::istream& in, const std::string& name, const std::filesystem::path& folder,
