@@ -56,14 +56,22 @@ inline int obj_face_line(const std::filesystem::path& path, std::size_t face_num
     return 0;
 }
 
-/// A tinyobjloader message (possibly several lines) as one line.
+/// A tinyobjloader message (possibly several lines) as one short line: line
+/// breaks become blanks, other bytes that are not printable ASCII become '?'
+/// (its messages quote names from the file), and it keeps its first 200
+/// characters, so a message never dumps file contents.
 inline std::string one_line(std::string text)
 {
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
         text.pop_back();
+    const std::size_t keep = 200;
+    if (text.size() > keep)
+        text = text.substr(0, keep) + "...";
     for (char& c : text)
         if (c == '\n' || c == '\r')
             c = ' ';
+        else if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) >= 127)
+            c = '?';
     return text;
 }
 
