@@ -92,6 +92,8 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
         throw error(source_location{name}, "expected an OBJ file, found no such file; check the path");
     if (std::filesystem::is_directory(path, ec))
         throw error(source_location{name}, "expected an OBJ file, found a folder; name the .obj file itself");
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw error(source_location{name}, "expected an OBJ file, found a device, pipe or socket; name a .obj file");
     if (!std::ifstream(path))
         throw error(source_location{name}, "expected a readable OBJ file, found one that cannot be opened; check its permissions");
 
