@@ -21,6 +21,7 @@
 #include <string>
 #include <system_error>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "camera.hpp"
@@ -396,6 +397,21 @@ inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t l
     return !text.empty();
 }
 
+/// Where a scene file's mesh path leads: relative to the scene file's folder
+/// (never to the working directory), or as written when absolute.
+inline std::filesystem::path mesh_path(const std::filesystem::path& folder, const std::filesystem::path& written)
+{
+    return written.is_absolute() ? written : folder / written;
+}
+
+/// The folder a scene file's relative paths start from: its parent, or the
+/// empty path (the working directory, which messages then leave out) for a
+/// scene file named without a folder.
+inline std::filesystem::path scene_folder(const std::filesystem::path& scene_file)
+{
+    return scene_file.parent_path();
+}
+
 inline int find_material(const scene& s, statement& line)
 {
     const std::string name = line.word("a material name");
@@ -579,7 +595,7 @@ private:
             } else
                 translate = line.vector("translate");
         });
-        const std::filesystem::path path = relative.is_absolute() ? relative : folder_ / relative;
+        const std::filesystem::path path = mesh_path(folder_, relative);
         obj_limits limits = options_.obj; // one budget of triangles for all the scene's meshes
         limits.max_triangles -= triangles_;
         obj_result loaded;
@@ -690,8 +706,19 @@ inline scene load_scene(const std::filesystem::path& path, const load_options& o
         throw error(source_location{name}, std::filesystem::exists(path, ec)
                                                ? "expected a readable scene file, found one that cannot be opened; check its permissions"
                                                : "expected a scene file, found no such file; check the path");
-    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    return detail::load_scene_stream(in, name, folder, options);
+    return detail::load_scene_stream(in, name, detail::scene_folder(path), options);
+}
+
+/// The files load_scene(path) read to make `s`: the scene file and the OBJ file
+/// of each mesh. A program that writes an output checks it against them first
+/// (rt::check_not_input), so a mistyped command line cannot overwrite an input.
+inline std::vector<std::filesystem::path> input_files(const std::filesystem::path& path, const scene& s)
+{
+    std::vector<std::filesystem::path> files{path};
+    for (const shape& item : s.shapes)
+        if (const mesh* m = std::get_if<mesh>(&item))
+            files.push_back(detail::mesh_path(detail::scene_folder(path), m->source));
+    return files;
 }
 
 } // namespace rt

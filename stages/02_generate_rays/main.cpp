@@ -60,6 +60,7 @@ int main(int argc, char** argv)
             s.cam.kind = rt::projection::perspective;
             s.cam.plane.reset();
         }
+        rt::check_not_input(output, rt::input_files(scene_path, s)); // nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
         rt::save_image(output, rt::render_ray_directions(gen), 1.0f);
         std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)\n";
