@@ -15,7 +15,9 @@
 #include <random>
 #include <string>
 #include <variant>
+#include <vector>
 
+#include <rt/atomic_file.hpp>
 #include <rt/error.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/scene_loader.hpp>
@@ -382,4 +384,33 @@ TEST_CASE("messages: a long token or path is shortened, never dumped")
     CAPTURE(mesh);
     CHECK(mesh.size() < 500);
     CHECK(has(mesh, "ddd.obj: expected an OBJ file, found no such file"));
+}
+
+TEST_CASE("outputs: an output path that is one of the inputs, however spelled, is refused before writing")
+{
+    const scratch folder;
+    fs::create_directories(folder.path() / "models");
+    std::ofstream(folder.path() / "models" / "t.obj") << triangle_obj;
+    const fs::path scene_file = folder.write("a.scene", "mesh models/t.obj\nsphere\n");
+    const rt::scene s = rt::load_scene(scene_file);
+    const std::vector<fs::path> inputs = rt::input_files(scene_file, s);
+    REQUIRE(inputs.size() == 2);
+    CHECK(fs::equivalent(inputs[0], scene_file));
+    CHECK(fs::equivalent(inputs[1], folder.path() / "models" / "t.obj"));
+    const auto refused = [&](const fs::path& output) {
+        try {
+            rt::check_not_input(output, inputs);
+        } catch (const rt::error& e) {
+            return has(e.what(), "expected an output path different from the input");
+        }
+        return false;
+    };
+    CHECK(refused(scene_file));
+    CHECK(refused(folder.path() / "models" / ".." / "a.scene"));
+    CHECK(refused(folder.path() / "models" / "t.obj"));
+    fs::create_symlink(scene_file, folder.path() / "link.png");
+    CHECK(refused(folder.path() / "link.png"));
+    CHECK_FALSE(refused(folder.path() / "new.png")); // does not exist yet
+    folder.write("other.png", "x");
+    CHECK_FALSE(refused(folder.path() / "other.png")); // exists, but is not an input
 }

@@ -30,7 +30,7 @@ mkdir -p "$out/artifacts" "$out/logs" "$out/seeds/fuzz_scene" "$out/seeds/fuzz_s
 # stands for "mesh m.obj"), beside the checked-in seeds of fuzz/seeds/.
 rm -f "$out"/seeds/fuzz_scene/* "$out"/seeds/fuzz_scene_obj/*
 n=0
-for file in scenes/*.scene scenes/models/*.obj tests/bad_inputs/*; do
+for file in scenes/*.scene scenes/models/*.obj tests/bad_inputs/* tests/bad_inputs/obj/*; do
     [ -f "$file" ] || continue
     n=$((n + 1))
     case $file in
