@@ -13,12 +13,14 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include <rt/atomic_file.hpp>
 #include <rt/error.hpp>
+#include <rt/image_io.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/scene_loader.hpp>
 
@@ -413,4 +415,29 @@ TEST_CASE("outputs: an output path that is one of the inputs, however spelled, i
     CHECK_FALSE(refused(folder.path() / "new.png")); // does not exist yet
     folder.write("other.png", "x");
     CHECK_FALSE(refused(folder.path() / "other.png")); // exists, but is not an input
+}
+
+TEST_CASE("review: a PFM header that claims more pixels than the file holds fails without allocating them")
+{
+    // The header claims 16384 x 16384 pixels (3 GB of floats), the file holds one:
+    // read_pfm used to allocate and zero the whole image before reading a row.
+    std::istringstream claim("PF\n16384 16384\n-1\n" + std::string(12, '\0'));
+    try {
+        rt::read_pfm(claim, "claim.pfm");
+        FAIL("expected an error");
+    } catch (const rt::error& e) {
+        CHECK(std::string(e.what()) == "claim.pfm: expected 16384x16384 pixels, found a truncated file");
+    }
+    // What write_pfm writes, read_pfm reads back bit for bit, bottom row first in the file.
+    rt::image img(3, 2);
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x)
+            img.at(x, y) = rt::color(float(x) + 0.25f, float(y) - 7.5f, float(x * y) * 1e-3f);
+    std::stringstream file;
+    rt::write_pfm(file, img);
+    const rt::image back = rt::read_pfm(file);
+    REQUIRE(back.width == 3);
+    REQUIRE(back.height == 2);
+    for (std::size_t i = 0; i < img.pixels.size(); ++i)
+        CHECK(back.pixels[i] == img.pixels[i]);
 }
