@@ -18,6 +18,10 @@ case $seconds in
     '' | *[!0-9]*) echo "usage: tools/fuzz.sh [SECONDS per target]" >&2; exit 2 ;;
 esac
 root=$(cd "$(dirname "$0")/.." && pwd)
+# fuzz_scene_obj writes its three input files for every run: keep them in memory.
+if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then
+    export TMPDIR=/dev/shm
+fi
 out="$root/build/fuzz"
 
 cd "$root"
