@@ -136,6 +136,20 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
     return img;
 }
 
+/// Throws the error save_image would throw for `path`'s extension, unless it is
+/// one save_image writes (.png, .ppm, .pfm, in any case). A program calls it
+/// with check_writable, before the work, so a mistyped -o fails at once.
+inline void check_image_path(const std::filesystem::path& path)
+{
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".png" && extension != ".ppm" && extension != ".pfm")
+        throw error(source_location{path.string()},
+                    "expected an image extension .png, .ppm or .pfm, found '" + extension +
+                        "'; name the output file with one of them");
+}
+
 /// Writes the image to `path`, atomically, in the format its extension names:
 /// .png and .ppm (8-bit, gamma-encoded) or .pfm (linear floats).
 inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
