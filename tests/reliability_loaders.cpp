@@ -483,3 +483,25 @@ TEST_CASE("real meshes: the pre-check rejects none of the shared test meshes, an
         CHECK(loaded.geometry.triangles.size() + loaded.geometry.dropped_degenerate == expected.triangles);
     }
 }
+
+TEST_CASE("outputs: check_image_path accepts exactly the extensions save_image writes")
+{
+    const scratch folder;
+    const rt::image img(2, 1);
+    for (const char* name : {"a.png", "a.ppm", "a.pfm", "a.PNG", "a.Pfm", "a.jpg", "a.png.txt", "a", "a.", ".png"}) {
+        CAPTURE(name);
+        std::string checked, saved;
+        try {
+            rt::check_image_path(folder.path() / name);
+        } catch (const rt::error& e) {
+            checked = e.what();
+        }
+        try {
+            rt::save_image(folder.path() / name, img);
+        } catch (const rt::error& e) {
+            saved = e.what();
+        }
+        CHECK(checked == saved);
+        CHECK(fs::exists(folder.path() / name) == checked.empty());
+    }
+}

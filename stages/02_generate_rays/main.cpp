@@ -50,6 +50,7 @@ int main(int argc, char** argv)
         if (scene_path.empty())
             throw rt::error("expected a scene file, found none; see --help");
         rt::check_writable(output); // fail before the work, not after it
+        rt::check_image_path(output);
 
         rt::scene s = rt::load_scene(scene_path);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
