@@ -132,7 +132,7 @@ TEST_CASE("a camera elsewhere: rays follow the frame (eye 1 2 3 looking along +x
     check_near(r.direction, {2, -1.5, 0.5}); // 1.5 u + 0.5 v - 2 w
 }
 
-TEST_CASE("orthographic rays are all parallel; perspective rays all pass through the eye")
+TEST_CASE("orthographic rays are all parallel, perspective rays all pass through the eye")
 {
     rt::camera cam;
     cam.eye = {2, 1, 4};

@@ -1,0 +1,354 @@
+#!/usr/bin/env python3
+"""check_kit.py - proves the student kit works, for CI.
+
+    python3 tools/check_kit.py                 # everything below
+    python3 tools/check_kit.py --no-reference  # when CI has built and tested the reference already
+
+1. The markers are valid (tools/make_kit.py --check).
+2. The reference builds with -Werror and passes every test (hidden suites included; the tools'
+   own tests, label tools, are left to CI's ordinary ctest run).
+3. A kit with every stage stripped builds with -Werror (test suites, stage programs and the
+   header check; also with clang++ when it is installed), and then
+   - a case of a stripped stage either passes (it tests unmarked code) or fails with the
+     not-done message of one of its own stage's exercises; every stripped stage has at
+     least one such failure (so its tests can fail);
+   - every stage program exits with 3 and "not done yet: ..." on scenes/showcase.scene.
+4. For each stage with exercise regions, a kit with only that stage stripped: its cases fail
+   as above, every case of every other stage passes.
+A failing case of stage k that names another stage's exercise is a bug in that test (it
+calls another stage's exercise) and is reported by name.
+
+The kits are written into one folder (<work>/kit) that is updated in place, so its build
+folder recompiles only what a kit changes; ccache is used when it is installed.
+The last line reads "check_kit: N passed, M failed" (one check per kit) and the exit code is
+0 only when nothing failed. Python 3 standard library only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Set, Tuple
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import make_kit  # noqa: E402  (the sibling module)
+
+NOT_DONE_RE = re.compile(r'stage (?P<stage>[0-9]{2}): (?P<title>[^\n"]+?): see (?P<page>[^\s"\']+)')
+
+
+def log(message: str) -> None:
+    print(message, flush=True)
+
+
+@dataclass
+class CaseResult:
+    name: str
+    stage: int
+    passed: bool
+    output: str
+
+
+@dataclass
+class KitReport:
+    name: str
+    problems: List[str] = field(default_factory=list)
+    notes: List[str] = field(default_factory=list)
+    cases: int = 0
+    passed: int = 0
+    not_done: int = 0
+    seconds: float = 0.0
+    messages_seen: Set[str] = field(default_factory=set)
+
+
+class Builder:
+    """One CMake build folder, configured once, built target by target."""
+
+    def __init__(self, source: Path, build: Path, jobs: int, compiler: Optional[str], werror: bool = True):
+        self.source, self.build, self.jobs = source, build, jobs
+        self.compiler, self.werror = compiler, werror
+        self.configured = False
+
+    def configure(self) -> Tuple[bool, str]:
+        if self.configured:
+            return True, ""
+        args = ["cmake", "-S", str(self.source), "-B", str(self.build),
+                "-DCMAKE_BUILD_TYPE=Debug", f"-DRT_WERROR={'ON' if self.werror else 'OFF'}"]
+        if shutil.which("ninja"):
+            args += ["-G", "Ninja"]
+        if self.compiler:
+            args.append(f"-DCMAKE_CXX_COMPILER={self.compiler}")
+        if shutil.which("ccache"):
+            args.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
+        ok, out = run(args)
+        self.configured = ok
+        return ok, out
+
+    def targets(self, names: Sequence[str]) -> Tuple[bool, str]:
+        ok, out = self.configure()
+        if not ok:
+            return False, out
+        return run(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target", *names])
+
+
+def run(args: Sequence[str], cwd: Optional[Path] = None, timeout: Optional[float] = None) -> Tuple[bool, str]:
+    try:
+        p = subprocess.run(list(args), cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           timeout=timeout)
+        return p.returncode == 0, p.stdout.decode("utf-8", "replace")
+    except subprocess.TimeoutExpired as e:
+        return False, (e.stdout or b"").decode("utf-8", "replace") + f"\n(timed out after {timeout} s)"
+
+
+def first_error(output: str) -> str:
+    for line in output.splitlines():
+        if re.search(r"\b(error|Error)\b", line):
+            return line.strip()
+    lines = [l for l in output.splitlines() if l.strip()]
+    return lines[-1] if lines else "(no output)"
+
+
+def test_targets(root: Path, hidden: bool = False) -> List[str]:
+    names = [f"test_{Path(f).stem}" for files in make_kit.known_stages(root).values() for f in files]
+    if hidden and (root / "tests" / "hidden").is_dir():
+        names += [f"test_hidden_{p.stem}" for p in sorted((root / "tests" / "hidden").glob("stage[0-9][0-9]_*.cpp"))]
+    return names
+
+
+def program_targets(root: Path) -> List[Tuple[str, Path]]:
+    out = []
+    stages = root / "stages"
+    if stages.is_dir():
+        for d in sorted(stages.iterdir()):
+            if re.match(r"^[0-9]{2}_", d.name) and (d / "main.cpp").is_file():
+                out.append((f"stage{d.name}", d))
+    return out
+
+
+def run_ctest(build: Path, jobs: int, timeout: int, junit: Path) -> Tuple[List[CaseResult], str]:
+    """Runs every test but the tools' own (label tools: CI's ordinary ctest run has them)."""
+    if junit.exists():
+        junit.unlink()
+    _, out = run(["ctest", "--test-dir", str(build), "-j", str(jobs), "--timeout", str(timeout),
+                  "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error"])
+    if not junit.is_file():
+        return [], out
+    cases = []
+    for case in ET.parse(junit).getroot().iter("testcase"):
+        name = case.get("name", "")
+        m = re.match(r"^stage([0-9]{2})\.", name)
+        stage = int(m.group(1)) if m else 0
+        status = case.get("status", "")
+        system_out = case.find("system-out")
+        text = system_out.text if system_out is not None and system_out.text else ""
+        cases.append(CaseResult(name, stage, status in ("run", "notrun", "disabled") and
+                                case.find("failure") is None, text))
+    return cases, out
+
+
+EMPTY_RUN_RE = re.compile(r"test cases:\s+0\s+\|")
+
+
+def vacuous(cases: List[CaseResult]) -> List[str]:
+    """ctest tests that ran no doctest case, so cannot fail: a ';' in a TEST_CASE name
+    makes doctest_discover_tests split it into filters that match nothing."""
+    return [f"{c.name}: the ctest test ran no doctest case, so it cannot fail (a ';' in the "
+            f"TEST_CASE name splits it in doctest_discover_tests: use another character)"
+            for c in cases if c.passed and EMPTY_RUN_RE.search(c.output)]
+
+
+def judge(report: KitReport, cases: List[CaseResult], stripped: Set[int], region_messages: Dict[str, int]) -> None:
+    """Checks the cases of one kit against the rule: exactly the stripped stages fail,
+    each with its own not-done message."""
+    report.cases = len(cases)
+    report.problems.extend(vacuous(cases))
+    failures_by_stage: Dict[int, int] = {}
+    for case in cases:
+        if case.passed:
+            report.passed += 1
+            continue
+        messages = [m.group(0) for m in NOT_DONE_RE.finditer(case.output)]
+        named_stages = {int(NOT_DONE_RE.match(m).group("stage")) for m in messages}
+        if case.stage == 0:
+            report.problems.append(f"{case.name}: failed: {first_line(case.output)}")
+        elif case.stage not in stripped:
+            if named_stages:
+                report.problems.append(
+                    f"{case.name}: stage {case.stage:02d} is solved in this kit but the case fails with "
+                    f"'{messages[0]}': the test calls stage {min(named_stages):02d}'s exercise "
+                    f"(a bug in the test: build its inputs directly)")
+            else:
+                report.problems.append(f"{case.name}: stage {case.stage:02d} is solved in this kit but the "
+                                       f"case fails: {first_line(case.output)}")
+        elif not messages:
+            report.problems.append(f"{case.name}: expected the not-done message of a stage {case.stage:02d} "
+                                   f"exercise, found another failure: {first_line(case.output)}")
+        elif named_stages != {case.stage}:
+            other = min(s for s in named_stages if s != case.stage)
+            report.problems.append(f"{case.name}: fails with '{messages[0]}': a stage {case.stage:02d} test "
+                                   f"calls stage {other:02d}'s exercise (a bug in the test: build its "
+                                   f"inputs directly)")
+        else:
+            report.not_done += 1
+            failures_by_stage[case.stage] = failures_by_stage.get(case.stage, 0) + 1
+            report.messages_seen.update(messages)
+    for stage in sorted(stripped):
+        if not failures_by_stage.get(stage):
+            report.problems.append(f"stage {stage:02d} is stripped but none of its cases fails with its "
+                                   f"not-done message: its tests cannot fail")
+
+
+def first_line(output: str) -> str:
+    for line in output.splitlines():
+        if "ERROR" in line or "error" in line or "FATAL" in line or "Exception" in line:
+            return line.strip()
+    lines = [l.strip() for l in output.splitlines() if l.strip() and not l.startswith("[doctest]")]
+    return lines[-1] if lines else "(no output)"
+
+
+def check_programs(report: KitReport, kit: Path, build: Path) -> None:
+    scene = kit / "scenes" / "showcase.scene"
+    for target, _ in program_targets(kit):
+        exe = build / "stages" / target
+        if not exe.is_file():
+            report.problems.append(f"{target}: not built")
+            continue
+        with tempfile.TemporaryDirectory() as cwd:
+            try:
+                p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=120)
+            except subprocess.TimeoutExpired:
+                report.problems.append(f"{target}: still running after 120 s")
+                continue
+        err = p.stderr.decode("utf-8", "replace").strip()
+        if p.returncode == 3 and "not done yet: stage" in err:
+            report.notes.append(f"{target}: exit 3: {err.splitlines()[-1]}")
+        else:
+            report.problems.append(f"{target}: expected exit 3 and 'not done yet: stage ...', found exit "
+                                   f"{p.returncode}: {err[-300:] or '(no message)'}")
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--source", default=str(make_kit.DEFAULT_SOURCE), help="the reference repository")
+    parser.add_argument("--work", help="work folder (default: <source>/build/kit-check)")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--no-reference", action="store_true", help="skip building and testing the reference")
+    parser.add_argument("--no-clang", action="store_true", help="skip the clang++ build of the stripped kit")
+    parser.add_argument("--timeout", type=int, default=300, help="seconds per test case (ctest --timeout)")
+    args = parser.parse_args(argv)
+
+    source = Path(args.source).resolve()
+    work = Path(args.work).resolve() if args.work else source / "build" / "kit-check"
+    work.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    reports: List[KitReport] = []
+
+    # 1. markers
+    try:
+        regions = make_kit.scan_repository(source)
+    except make_kit.KitError as e:
+        for m in e.messages:
+            log(m)
+        log("check_kit: 0 passed, 1 failed")
+        return 1
+    stages_with_regions = sorted({r.stage for r in regions})
+    all_stages = sorted(make_kit.known_stages(source))
+    log(f"check_kit: {len(regions)} regions in stages {', '.join(f'{s:02d}' for s in stages_with_regions)}; "
+        f"test suites for stages {', '.join(f'{s:02d}' for s in all_stages)}")
+    doc_of = {s: make_kit.stage_doc(source, s) for s in all_stages}
+    region_messages = {make_kit.not_done_message(r, doc_of.get(r.stage)): r.stage for r in regions}
+
+    # 2. the reference
+    if not args.no_reference:
+        report = KitReport("reference")
+        t0 = time.monotonic()
+        builder = Builder(source, work / "reference-build", args.jobs, None)
+        ok, out = builder.targets(["all"])
+        if not ok:
+            report.problems.append(f"build failed: {first_error(out)}")
+        else:
+            cases, out = run_ctest(work / "reference-build", args.jobs, args.timeout, work / "reference.xml")
+            if not cases:
+                report.problems.append(f"no test ran: {first_error(out)}")
+            report.cases = len(cases)
+            report.passed = sum(c.passed for c in cases)
+            report.problems.extend(vacuous(cases))
+            for c in cases:
+                if not c.passed:
+                    report.problems.append(f"{c.name}: failed in the reference: {first_line(c.output)}")
+        report.seconds = time.monotonic() - t0
+        reports.append(report)
+        print_report(report)
+
+    # 3 and 4. the kits, all in one folder updated in place
+    kit = work / "kit"
+    builder = Builder(kit, kit / "build", args.jobs, None)
+    clang = None if args.no_clang or not shutil.which("clang++") else Builder(kit, kit / "build-clang", args.jobs, "clang++")
+    plans = [("all stages stripped", set(all_stages))] + \
+            [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
+    for name, stripped in plans:
+        report = KitReport(name)
+        t0 = time.monotonic()
+        plan = make_kit.plan_kit(source, stripped)
+        make_kit.sync_kit(source, plan, kit)
+        leaked = [f for f in plan.left_out if (kit / f).exists()]
+        if leaked:
+            report.problems.append(f"instructor-only files in the kit: {', '.join(leaked)}")
+        first = name == "all stages stripped"
+        targets = test_targets(kit)
+        if first:
+            targets = ["all"]
+        ok, out = builder.targets(targets)
+        if not ok:
+            report.problems.append(f"build failed (-Werror): {first_error(out)}")
+        else:
+            cases, out = run_ctest(kit / "build", args.jobs, args.timeout, work / f"kit-{len(reports)}.xml")
+            if not cases:
+                report.problems.append(f"no test ran: {first_error(out)}")
+            judge(report, cases, stripped & set(stages_with_regions), region_messages)
+            if first:
+                check_programs(report, kit, kit / "build")
+        if first and clang is not None:
+            ok, out = clang.targets(test_targets(kit) + ["rt_header_check"])
+            if not ok:
+                report.problems.append(f"clang++ build failed (-Werror): {first_error(out)}")
+            else:
+                report.notes.append("clang++ -Werror: the stripped kit's suites and header check build")
+        report.seconds = time.monotonic() - t0
+        reports.append(report)
+        print_report(report)
+
+    # every exercise reached by at least one failing case (a warning: a case stops at
+    # the first exercise it meets, so an exercise may be hidden behind another)
+    seen = set().union(*(r.messages_seen for r in reports)) if reports else set()
+    for message in sorted(set(region_messages) - seen):
+        log(f"check_kit: note: no failing case reported '{message}' first; "
+            f"is that exercise tested on its own?")
+
+    failed = sum(1 for r in reports if r.problems)
+    log(f"check_kit: took {time.monotonic() - started:.0f} s")
+    log(f"check_kit: {len(reports) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+def print_report(report: KitReport) -> None:
+    verdict = "ok" if not report.problems else "FAILED"
+    log(f"[{verdict}] {report.name}: {report.cases} cases, {report.passed} passed, "
+        f"{report.not_done} failed with their own not-done message, "
+        f"{report.cases - report.passed - report.not_done} other failures ({report.seconds:.0f} s)")
+    for note in report.notes:
+        log(f"    {note}")
+    for problem in report.problems:
+        log(f"    problem: {problem}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

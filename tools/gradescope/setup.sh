@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Gradescope runs this once, as root, when it builds the autograder image.
+# It installs what rt's build needs and runs the stripped reference once, so every
+# submission's grading finds the cases that pass without any exercise in the cache.
+set -euo pipefail
+root="${AUTOGRADER_ROOT:-/autograder}"
+if command -v apt-get >/dev/null; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update
+  apt-get install -y --no-install-recommends cmake ninja-build g++ python3 \
+    libglm-dev doctest-dev libtinyobjloader-dev
+fi
+hidden=()
+if [ -d "$root/source/hidden" ]; then hidden=(--hidden "$root/source/hidden"); fi
+python3 "$root/source/rt/tools/grade.py" --calibrate --cache "$root/source/cache" "${hidden[@]}"
