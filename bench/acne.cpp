@@ -7,7 +7,9 @@
 // ray to the light three ways:
 //   no_offset      from the hit point itself, t in [0, ...): the naive ray;
 //   fixed_epsilon  rt::light_visible_fixed_epsilon (t >= 1e-4, the textbook's);
-//   robust_offset  rt::light_visible (Ray Tracing Gems ch. 6 offset, the library's).
+//   robust_offset  rt::light_visible (Ray Tracing Gems ch. 6 offset, the stage-06 shadow ray);
+//   error_bounds   rt::spawn_ray (PBR 3rd ed. sec. 3.9.5: past the hit point's
+//                  rounding error bound), t in [0, ...).
 // The truth comes from the analytic scene in double: a ground point is in
 // shadow exactly when its segment to the light passes through the sphere; a
 // sphere point is lit exactly when its outward normal faces the light (the
@@ -25,6 +27,7 @@
 #include <rt/light.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>
+#include <rt/spawn.hpp>
 
 #include "bench.hpp"
 
@@ -42,6 +45,8 @@ double dot(const dvec& a, const dvec& b) { return a.x * b.x + a.y * b.y + a.z * 
 dvec sub(const dvec& a, const dvec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 enum class truth { lit, shadowed, ambiguous };
+
+constexpr int methods = 4;
 
 } // namespace
 
@@ -76,7 +81,7 @@ int main(int argc, char** argv)
             const dvec centre{0, double(S), 0}, light_d = to_d(lamp.position);
             const double R = double(S);
             std::size_t lit = 0, shadowed = 0, ambiguous = 0;
-            std::size_t acne[3] = {0, 0, 0}, leaks[3] = {0, 0, 0};
+            std::size_t acne[methods] = {}, leaks[methods] = {};
             for (int j = 0; j < height; ++j)
                 for (int i = 0; i < width; ++i) {
                     const rt::ray r = rt::pixel_ray(gen, i, j);
@@ -114,19 +119,22 @@ int main(int argc, char** argv)
                     }
                     (t == truth::lit ? lit : shadowed)++;
                     const rt::light_sample sample = rt::sample_light(lamp, hit.point);
-                    const bool visible[3] = {
+                    const rt::ray spawned = rt::spawn_ray(hit, sample.l);
+                    const real spawned_tmax = glm::length(lamp.position - spawned.origin) * (1 - real(1e-4));
+                    const bool visible[methods] = {
                         !accel.any_hit(rt::ray{hit.point, sample.l}, real(0), sample.distance * (1 - real(1e-4))),
                         rt::light_visible_fixed_epsilon(accel, hit, sample),
-                        rt::light_visible(accel, hit, sample)};
-                    for (int m = 0; m < 3; ++m) {
+                        rt::light_visible(accel, hit, sample),
+                        !accel.any_hit(spawned, real(0), spawned_tmax)};
+                    for (int m = 0; m < methods; ++m) {
                         if (t == truth::lit && !visible[m])
                             ++acne[m];
                         if (t == truth::shadowed && visible[m])
                             ++leaks[m];
                     }
                 }
-            const char* names[3] = {"no_offset", "fixed_epsilon", "robust_offset"};
-            for (int m = 0; m < 3; ++m) {
+            const char* names[methods] = {"no_offset", "fixed_epsilon", "robust_offset", "error_bounds"};
+            for (int m = 0; m < methods; ++m) {
                 const double af = lit ? double(acne[m]) / double(lit) : 0;
                 const double lf = shadowed ? double(leaks[m]) / double(shadowed) : 0;
                 table.row() << double(S) << names[m] << lit << shadowed << ambiguous << acne[m] << af << leaks[m] << lf;

@@ -157,20 +157,24 @@ def plot_triangle(data, charts):
     if not os.path.exists(path):
         return print("triangle: no", path)
     notes, rows = read(path)
-    sets = sorted({r["rays"] for r in rows})
-    fig, ax = plt.subplots(figsize=(8, 5))
+    contract = os.path.join(data, "triangle_contract.csv")
+    if os.path.exists(contract):
+        rows += [r for r in read(contract)[1] if r["method"].startswith("watertight")]
+    sets = ["surface", "edges", "vertices"]
+    fig, ax = plt.subplots(figsize=(9, 5.5))
     markers = "osd^v<>"
-    colours = {"moller_trumbore": "tab:red", "watertight": "tab:blue"}
+    colours = {"moller_trumbore": "tab:red", "watertight": "tab:blue", "watertight_per_ray": "tab:green",
+               "watertight+fma": "tab:orange", "watertight_per_ray+fma": "gold"}
     for k, ray_set in enumerate(sets):
         for method, colour in colours.items():
             pts = [r for r in rows if r["rays"] == ray_set and r["method"] == method]
             if not pts:
                 continue
-            leak = [max(num(r["leak_fraction"]), 1e-7) for r in pts]
+            leak = [max(num(r["leak_fraction"]), 1e-6) for r in pts]
             speed = [num(r["mtests_per_s"]) for r in pts]
             ax.semilogx(leak, speed, markers[k % len(markers)], color=colour, ms=7,
                         label="%s, %s" % (method.replace("_", "-"), ray_set))
-    ax.set_xlabel("leak rate: rays from inside that escape the closed mesh (1e-7 = none)")
+    ax.set_xlabel("leak rate: rays from inside that escape the closed mesh (1e-6 = none)")
     ax.set_ylabel("million ray-triangle tests per second, 1 thread")
     ax.set_title("Triangle intersection: speed against leaks on closed meshes", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
@@ -214,7 +218,8 @@ def plot_acne(data, charts):
         return print("acne: no", path)
     notes, rows = read(path)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    colours = {"fixed_epsilon": "tab:red", "robust_offset": "tab:blue", "no_offset": "0.5"}
+    colours = {"no_offset": "0.5", "fixed_epsilon": "tab:red", "robust_offset": "tab:blue",
+               "error_bounds": "tab:green"}
     for method, colour in colours.items():
         pts = sorted((num(r["scale"]), num(r["acne_fraction"]), num(r["leak_fraction"])) for r in rows
                      if r["method"] == method)
@@ -351,10 +356,10 @@ def plot_headline(data, charts):
         _, rows = read(tri_path)
         for method, colour in (("moller_trumbore", "tab:red"), ("watertight", "tab:blue")):
             pts = [r for r in rows if r["method"] == method]
-            axes[2].semilogx([max(num(r["leak_fraction"]), 1e-7) for r in pts], [num(r["mtests_per_s"]) for r in pts],
+            axes[2].semilogx([max(num(r["leak_fraction"]), 1e-6) for r in pts], [num(r["mtests_per_s"]) for r in pts],
                              "o", color=colour, label=method.replace("_", "-"))
         axes[2].set_title("Triangles: speed vs leaks (closed meshes)", fontsize=9)
-        axes[2].set_xlabel("leak rate (1e-7 = none)")
+        axes[2].set_xlabel("leak rate (1e-6 = none)")
         axes[2].set_ylabel("M tests/s")
     for ax in axes:
         ax.grid(True, which="both", alpha=0.3)

@@ -136,9 +136,16 @@ inline unsigned hardware_threads()
 /// One line that says where the numbers come from.
 inline std::string machine_line()
 {
+    std::string flags = RT_BENCH_FLAGS;
+#if defined(RT_BENCH_CONTRACT) // built without -ffp-contract=off (bench/CMakeLists.txt)
+    const std::string off = "-ffp-contract=off";
+    const auto at = flags.find(off);
+    if (at != std::string::npos)
+        flags.replace(at, off.size(), "-ffp-contract=fast");
+#endif
     std::ostringstream s;
     s << cpu_model() << ", " << hardware_threads() << " hardware threads, " << cpu_simd() << "; " << compiler()
-      << ", " << RT_BENCH_BUILD_TYPE << " " << RT_BENCH_FLAGS << "; rt::real = "
+      << ", " << RT_BENCH_BUILD_TYPE << " " << flags << "; rt::real = "
       << (sizeof(rt::real) == 4 ? "float" : "double");
     return s.str();
 }
