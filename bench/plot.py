@@ -370,6 +370,83 @@ def plot_headline(data, charts):
     save(fig, charts, "headline.png")
 
 
+TARGET_MESHES = ["stanford-bunny.obj", "bunny-loop2.obj", "conference.obj", "sponza-dabrovic.obj"]
+
+
+def write_tables(data, charts):
+    """tables.md: the Embree table with the issue's targets checked, and the sampling slopes."""
+    out = []
+    rays_path = os.path.join(data, "embree_rays.csv")
+    build_path = os.path.join(data, "embree_build.csv")
+    if os.path.exists(rays_path) and os.path.exists(build_path):
+        notes, rows = read(rays_path)
+        builds = {r["mesh"]: r for r in read(build_path)[1]}
+        out.append("Machine: " + notes.get("machine", "unknown") + "  ")
+        out.append(notes.get("embree", "") + "; " + notes.get("rays", "") + ".\n")
+        out.append("| mesh | triangles | set | rt Mrays/s (1 thr) | Embree Mrays/s (1 thr) | rt/Embree (1 thr) "
+                   "| rt/Embree (all thr) | hits rt / Embree | mismatches (hit, depth) |")
+        out.append("|---|---:|---|---:|---:|---:|---:|---:|---:|")
+        for r in rows:
+            if r["threads"] != "1":
+                continue
+            other = [x for x in rows if x["mesh"] == r["mesh"] and x["set"] == r["set"] and x["threads"] != "1"]
+            all_ratio = "%.2f" % num(other[0]["ratio_rt_over_embree"]) if other else "-"
+            out.append("| %s | %s | %s | %.2f | %.2f | **%.2f** | %s | %s / %s | %s, %s |" % (
+                r["mesh"].replace(".obj", ""), r["triangles"], r["set"], num(r["rt_mrays_per_s"]),
+                num(r["embree_mrays_per_s"]), num(r["ratio_rt_over_embree"]), all_ratio, r["rt_hits"],
+                r["embree_hits"], r["hit_mismatch"], r["depth_mismatch"]))
+        out.append("")
+        out.append("| mesh | rt build (s) | Embree build, 1 thread (s) | Embree build, all threads (s) | rt/Embree (1 thr) |")
+        out.append("|---|---:|---:|---:|---:|")
+        for m, b in builds.items():
+            out.append("| %s | %.3f | %.3f | %.3f | **%.2f** |" % (
+                m.replace(".obj", ""), num(b["rt_build_seconds"]), num(b["embree_build_seconds_1_thread"]),
+                num(b["embree_build_seconds_all_threads"]), num(b["ratio_rt_over_embree_1_thread"])))
+        out.append("")
+        out.append("Targets (single thread): closest hit >= 0.5x Embree on the outside, centre and incoherent sets, "
+                   "any hit >= 0.5x on the shadow set, build <= 3x.\n")
+        out.append("| mesh | outside | centre | incoherent | shadow | build |")
+        out.append("|---|---|---|---|---|---|")
+        for m in TARGET_MESHES:
+            cells = []
+            for s in ("outside", "centre", "incoherent", "shadow"):
+                match = [r for r in rows if r["mesh"] == m and r["set"] == s and r["threads"] == "1"]
+                if not match:
+                    cells.append("-")
+                    continue
+                ratio = num(match[0]["ratio_rt_over_embree"])
+                cells.append("%.2f %s" % (ratio, "met" if ratio >= 0.5 else "**missed by %.0f%%**" %
+                                          (100 * (0.5 - ratio) / 0.5)))
+            if m in builds:
+                ratio = num(builds[m]["ratio_rt_over_embree_1_thread"])
+                cells.append("%.2f %s" % (ratio, "met" if ratio <= 3 else "**missed**"))
+            else:
+                cells.append("-")
+            out.append("| %s | %s |" % (m.replace(".obj", ""), " | ".join(cells)))
+        out.append("")
+        for key, value in notes.items():
+            if "mismatches" in key:
+                out.append("- %s: %s" % (key, value))
+        out.append("")
+    slopes_path = os.path.join(data, "sampling_slopes.csv")
+    if os.path.exists(slopes_path):
+        _, rows = read(slopes_path)
+        out.append("| scene | filter | grid | random (theory -0.5) | jittered (theory -0.75) | halton |")
+        out.append("|---|---|---:|---:|---:|---:|")
+        for scene in dict.fromkeys(r["scene"] for r in rows):
+            for filt in ("box", "tent", "gaussian", "mitchell"):
+                get = {r["sampler"]: num(r["slope"]) for r in rows if r["scene"] == scene and r["filter"] == filt}
+                out.append("| %s | %s | %s |" % (scene, filt, " | ".join(
+                    "%.2f" % get[s] if s in get else "-" for s in ("grid", "random", "jittered", "halton"))))
+        out.append("")
+    if out:
+        path = os.path.join(charts, "tables.md")
+        with open(path + ".tmp", "w") as f:
+            f.write("\n".join(out) + "\n")
+        os.replace(path + ".tmp", path)
+        print("wrote", path)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--data", required=True, help="folder of the CSV files")
@@ -377,7 +454,7 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.charts, exist_ok=True)
     for plot in (plot_sampling, plot_sphere, plot_triangle, plot_groups, plot_acne, plot_embree, plot_frame,
-                 plot_headline):
+                 plot_headline, write_tables):
         plot(args.data, args.charts)
     return 0
 
