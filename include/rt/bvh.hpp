@@ -79,7 +79,16 @@
 #include <utility>
 #include <vector>
 
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+// RT_BVH_SSE: SSE2 is there (every x86-64 compiler) and rt::real is float.
+// Defined here and undefined at the end of this file.
+#if (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)) && \
+    !(defined(RT_USE_DOUBLE) && RT_USE_DOUBLE)
+#define RT_BVH_SSE 1
+#else
+#define RT_BVH_SSE 0
+#endif
+
+#if RT_BVH_SSE
 #include <emmintrin.h>
 #endif
 
@@ -541,8 +550,8 @@ private:
     bvh_stats& stats_;
 };
 
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
-constexpr bool bvh_uses_sse = std::is_same_v<real, float>;
+#if RT_BVH_SSE
+constexpr bool bvh_uses_sse = true;
 #else
 constexpr bool bvh_uses_sse = false;
 #endif
@@ -553,7 +562,7 @@ struct node_ray {
     real inv_dir[3];
     int near_row[3];  ///< per axis, the row of bvh_node::bounds met first: 2 k (lo) or 2 k + 1 (hi)
     int far_row[3];
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#if RT_BVH_SSE
     __m128 origin4[3];   ///< the origin's k-th coordinate in all four lanes
     __m128 inv_dir4[3];  ///< 1/d_k in all four lanes
 #endif
@@ -568,7 +577,7 @@ inline node_ray make_node_ray(const ray& r)
         n.inv_dir[k] = b.inv_dir[k];
         n.near_row[k] = 2 * k + b.negative[k];
         n.far_row[k] = 2 * k + 1 - b.negative[k];
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#if RT_BVH_SSE
         n.origin4[k] = _mm_set1_ps(float(b.origin[k]));
         n.inv_dir4[k] = _mm_set1_ps(float(b.inv_dir[k]));
 #endif
@@ -596,7 +605,7 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
     return mask;
 }
 
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#if RT_BVH_SSE
 /// The same test with SSE, one child per lane. _mm_max_ps(a, b) is exactly
 /// a > b ? a : b and _mm_min_ps(a, b) is a < b ? a : b, NaN included, so every
 /// lane computes bit for bit what intersect_children_scalar computes.
@@ -618,11 +627,11 @@ inline int intersect_children_sse(const bvh_node& node, const node_ray& r, float
 
 inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin, real tmax, real tnear[4])
 {
-#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
-    if constexpr (std::is_same_v<real, float>)
-        return intersect_children_sse(node, r, tmin, tmax, tnear);
-#endif
+#if RT_BVH_SSE
+    return intersect_children_sse(node, r, tmin, tmax, tnear);
+#else
     return intersect_children_scalar(node, r, tmin, tmax, tnear);
+#endif
 }
 
 } // namespace detail
@@ -775,3 +784,5 @@ private:
 };
 
 } // namespace rt
+
+#undef RT_BVH_SSE

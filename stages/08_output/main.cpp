@@ -6,9 +6,8 @@
 //     stage08_output ../shared/meshes/stanford-bunny.obj -o bunny.pfm --aov rays
 //     stage08_output --pattern zoneplate --width 256 --height 256 --sampler jittered --spp 16 -o zp.png
 //
-// The shaded image needs stages 04-07 (scene intersection and shading), which
-// are connected at the TODO(shading) hook in make_radiance below; until then
-// the command renders the `rays` AOV and the analytic test patterns.
+// Each sample's colour is rt::ray_color (stages 05-07) over the scene's
+// rt::accelerator (stage 04), or a debug image (--aov).
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -16,6 +15,7 @@
 #include <functional>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -23,10 +23,12 @@
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
 #include <rt/filter.hpp>
+#include <rt/intersect.hpp>
 #include <rt/image_io.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/progress.hpp>
 #include <rt/ray_image.hpp>
+#include <rt/raytracer.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/scene.hpp>
@@ -279,28 +281,42 @@ rt::scene scene_from_obj(const std::string& path, int nx, int ny)
 
 using radiance_function = std::function<rt::color(const rt::ray&, rt::sample_context&)>;
 
-/// What each sample computes, for a scene.
+/// What each sample computes, for a scene: the shaded colour of stages 05-07
+/// (ray_color, with the scene's accelerator) or a debug image (AOV).
 radiance_function make_radiance(const rt::scene& scene, aov_kind aov)
 {
-    switch (aov) {
-    case aov_kind::rays:
+    if (aov == aov_kind::rays)
         return [](const rt::ray& r, rt::sample_context&) { return rt::direction_to_color(r.direction); };
+    // built once, shared by every worker thread (closest_hit and any_hit are const)
+    const auto accel = std::make_shared<const rt::accelerator>(scene);
+    const rt::real far = std::numeric_limits<rt::real>::infinity();
+    switch (aov) {
     case aov_kind::depth:
+        // the distance along the ray, t |d|; 0 where the ray misses
+        return [accel, far](const rt::ray& r, rt::sample_context&) {
+            rt::hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? rt::color(float(hit.t * glm::length(r.direction)))
+                                                     : rt::color(0.0f);
+        };
     case aov_kind::normal:
+        // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
+        return [accel, far](const rt::ray& r, rt::sample_context&) {
+            rt::hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? rt::color((hit.normal + rt::vec3(1)) * rt::real(0.5))
+                                                     : rt::color(0.0f);
+        };
     case aov_kind::position:
-        // TODO(stage 04): intersect the scene (the BVH of stage 04) and return
-        // the hit's distance t, its unit normal (n + 1)/2 or its position.
-        throw rt::error("option --aov: depth, normal and position need the scene intersection of stage 04, "
-                        "which is not connected to this command yet; use --aov rays");
+        return [accel, far](const rt::ray& r, rt::sample_context&) {
+            rt::hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? rt::color(hit.point) : rt::color(0.0f);
+        };
+    case aov_kind::rays:
     case aov_kind::none: break;
     }
-    // TODO(shading): the integrator of stages 05-07 goes here: trace the ray
-    // into `scene` (scene.max_depth mirror bounces, shadows, lights) and return
-    // its radiance; sample_context::rng for random choices and ctx.rays += n
-    // for the secondary rays it traces.
-    (void)scene;
-    throw rt::error("the shaded image needs stages 05-07, which are not connected to this command yet; "
-                    "use --aov rays or --pattern zoneplate");
+    const auto shared_scene = std::make_shared<const rt::scene>(scene);
+    return [accel, shared_scene](const rt::ray& r, rt::sample_context&) {
+        return rt::ray_color(*shared_scene, *accel, r);
+    };
 }
 
 /// An analytic test pattern of the film position (x, y) in an nx x ny image.
