@@ -16,12 +16,10 @@
 #include <string>
 #include <vector>
 
-// renderer.hpp first: sampler.hpp names a local `shape`, which -Wshadow
-// reports when rt::shape (scene.hpp) is already declared.
-#include <rt/renderer.hpp>
 #include <rt/intersect.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/raytracer.hpp>
+#include <rt/renderer.hpp>
 #include <rt/scene_loader.hpp>
 
 #include "bench.hpp"
