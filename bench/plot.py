@@ -160,25 +160,33 @@ def plot_triangle(data, charts):
     contract = os.path.join(data, "triangle_contract.csv")
     if os.path.exists(contract):
         rows += [r for r in read(contract)[1] if r["method"].startswith("watertight")]
-    sets = ["surface", "edges", "vertices"]
-    fig, ax = plt.subplots(figsize=(9, 5.5))
-    markers = "osd^v<>"
+    sets = {"surface": "o", "edges": "s", "vertices": "D"}
     colours = {"moller_trumbore": "tab:red", "watertight": "tab:blue", "watertight_per_ray": "tab:green",
                "watertight+fma": "tab:orange", "watertight_per_ray+fma": "gold"}
-    for k, ray_set in enumerate(sets):
-        for method, colour in colours.items():
+    none = 3e-6  # where "no leak at all" is drawn on the log axis
+    fig, ax = plt.subplots(figsize=(9, 5.5))
+    for method, colour in colours.items():
+        for ray_set, marker in sets.items():
             pts = [r for r in rows if r["rays"] == ray_set and r["method"] == method]
             if not pts:
                 continue
-            leak = [max(num(r["leak_fraction"]), 1e-6) for r in pts]
-            speed = [num(r["mtests_per_s"]) for r in pts]
-            ax.semilogx(leak, speed, markers[k % len(markers)], color=colour, ms=7,
-                        label="%s, %s" % (method.replace("_", "-"), ray_set))
-    ax.set_xlabel("leak rate: rays from inside that escape the closed mesh (1e-6 = none)")
+            # all meshes together: leaks over rays, and tests per second over the total time
+            leaks = sum(num(r["leaks"]) for r in pts) / sum(num(r["ray_count"]) for r in pts)
+            tests = sum(num(r["ray_count"]) * num(r["triangles"]) for r in pts)
+            speed = tests / sum(num(r["seconds"]) for r in pts) / 1e6
+            ax.semilogx([max(leaks, none)], [speed], marker, color=colour, ms=8, mec="k", mew=0.5,
+                        label="%s, %s" % (method.replace("_", " "), ray_set))
+    ax.axvline(none * 1.7, color="0.6", lw=0.8, ls=":")
+    ax.set_xlim(none / 2, 1)
+    ticks = [none] + [10.0 ** e for e in range(-5, 1)]
+    ax.set_xticks(ticks)
+    ax.set_xticklabels(["none"] + ["1e%d" % e for e in range(-5, 1)])
+    ax.set_xlabel("leak rate: rays from inside a closed mesh that hit none of its triangles")
     ax.set_ylabel("million ray-triangle tests per second, 1 thread")
-    ax.set_title("Triangle intersection: speed against leaks on closed meshes", fontsize=10)
+    ax.set_title("Triangle intersection: speed against leaks (icosphere and double cone, all rays aimed "
+                 "at surface, edges or vertices)", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=6.5, ncol=2)
     fig.tight_layout(rect=(0, 0.04, 1, 1))
     footer(fig, notes)
     save(fig, charts, "triangle.png")
@@ -354,12 +362,24 @@ def plot_headline(data, charts):
     axes[1].set_ylabel("Mrays/s")
     if panels == 3:
         _, rows = read(tri_path)
-        for method, colour in (("moller_trumbore", "tab:red"), ("watertight", "tab:blue")):
-            pts = [r for r in rows if r["method"] == method]
-            axes[2].semilogx([max(num(r["leak_fraction"]), 1e-6) for r in pts], [num(r["mtests_per_s"]) for r in pts],
-                             "o", color=colour, label=method.replace("_", "-"))
+        contract = os.path.join(data, "triangle_contract.csv")
+        if os.path.exists(contract):
+            rows += [r for r in read(contract)[1] if r["method"] == "watertight+fma"]
+        for method, colour in (("moller_trumbore", "tab:red"), ("watertight", "tab:blue"),
+                               ("watertight+fma", "tab:orange")):
+            for ray_set, marker in (("surface", "o"), ("edges", "s"), ("vertices", "D")):
+                pts = [r for r in rows if r["method"] == method and r["rays"] == ray_set]
+                if not pts:
+                    continue
+                leaks = sum(num(r["leaks"]) for r in pts) / sum(num(r["ray_count"]) for r in pts)
+                speed = sum(num(r["ray_count"]) * num(r["triangles"]) for r in pts) / sum(
+                    num(r["seconds"]) for r in pts) / 1e6
+                axes[2].semilogx([max(leaks, 3e-6)], [speed], marker, color=colour, ms=7,
+                                 label="%s, %s" % (method.replace("_", "-"), ray_set))
+        axes[2].set_xticks([3e-6, 1e-4, 1e-2, 1])
+        axes[2].set_xticklabels(["none", "1e-4", "1e-2", "1"])
         axes[2].set_title("Triangles: speed vs leaks (closed meshes)", fontsize=9)
-        axes[2].set_xlabel("leak rate (1e-6 = none)")
+        axes[2].set_xlabel("leak rate")
         axes[2].set_ylabel("M tests/s")
     for ax in axes:
         ax.grid(True, which="both", alpha=0.3)
