@@ -95,7 +95,7 @@ int main(int argc, char** argv)
     return bench::run("bench_frame", [&] {
         const bench::options o = bench::parse_options(argc, argv, "bench_frame: experiment 7, whole frames");
         const int width = o.quick ? 64 : 640, height = o.quick ? 48 : 480;
-        const int repeats = o.quick ? 1 : 2;
+        const int repeats = o.quick ? 1 : 3;
         const unsigned all = bench::hardware_threads();
 
         struct entry {
