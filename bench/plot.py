@@ -233,7 +233,9 @@ def plot_acne(data, charts):
                      if r["method"] == method)
         if not pts:
             continue
-        label = method.replace("_", " ")
+        label = {"no_offset": "no offset", "fixed_epsilon": "fixed epsilon 1e-4",
+                 "robust_offset": "Ray Tracing Gems ch. 6 offset (light_visible)",
+                 "error_bounds": "PBR error bounds (spawn_ray)"}.get(method, method)
         axes[0].loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], "o-", color=colour, label=label)
         axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], "o-", color=colour, label=label)
     axes[0].set_title("acne: lit points wrongly in shadow")
@@ -242,8 +244,8 @@ def plot_acne(data, charts):
         ax.set_xlabel("scene scale")
         ax.set_ylabel("fraction (1e-6 = none)")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.suptitle("Self-intersection: fixed epsilon vs robust offset (Ray Tracing Gems ch. 6)", fontsize=10)
+        ax.legend(fontsize=7)
+    fig.suptitle("Self-intersection of shadow rays against scene scale", fontsize=10)
     fig.tight_layout(rect=(0, 0.04, 1, 0.95))
     footer(fig, notes)
     save(fig, charts, "acne.png")

@@ -9,7 +9,7 @@
 // fitted by least squares over spp >= 4 and compared with theory for pixels
 // crossed by edges: random sampling converges as N^-1/2 (the Monte Carlo
 // rate), jittered (stratified) sampling as N^-3/4 (D. P. Mitchell,
-// "Consequences of Stratified Sampling in Graphics", SIGGRAPH 1996, sec. 3:
+// "Consequences of Stratified Sampling in Graphics", SIGGRAPH 1996, abstract:
 // the variance of a stratified estimate of a pixel crossed by an edge falls as
 // N^-3/2).
 //
