@@ -19,6 +19,7 @@
 #include "random.hpp"
 #include "ray.hpp"
 #include "ray_image.hpp"
+#include "render_setup.hpp"
 #include "renderer.hpp"
 #include "sampler.hpp"
 #include "scene.hpp"

@@ -7,10 +7,10 @@
 //     stage08_output --pattern zoneplate --width 256 --height 256 --sampler jittered --spp 16 -o zp.png
 //
 // The shaded image needs stages 04-07 (scene intersection and shading), which
-// are connected at the TODO(shading) hook in make_radiance below; until then
-// the command renders the `rays` AOV and the analytic test patterns.
+// are connected at the TODO(shading) hook of rt::make_radiance
+// (include/rt/render_setup.hpp, shared with the viewer); until then the
+// command renders the `rays` AOV and the analytic test patterns.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -24,13 +24,11 @@
 #include <rt/encoding.hpp>
 #include <rt/filter.hpp>
 #include <rt/image_io.hpp>
-#include <rt/obj_loader.hpp>
 #include <rt/progress.hpp>
-#include <rt/ray_image.hpp>
+#include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/scene.hpp>
-#include <rt/scene_loader.hpp>
 #include <rt/tonemap.hpp>
 
 #include "stage_main.hpp"
@@ -135,7 +133,6 @@ Kind parse_name(const std::string& option, const std::string& text, std::optiona
     return *kind;
 }
 
-enum class aov_kind { none, depth, normal, position, rays };
 enum class pattern_kind { none, zoneplate, edge };
 
 struct settings {
@@ -147,7 +144,7 @@ struct settings {
     int threads = 0;
     rt::encoding encoding;
     std::uint64_t seed = 0;
-    aov_kind aov = aov_kind::none;
+    rt::aov_kind aov = rt::aov_kind::none;
     pattern_kind pattern = pattern_kind::none;
     std::optional<rt::crop_window> crop;
     bool quiet = false;
@@ -192,18 +189,7 @@ settings read_arguments(stage::arguments& args)
         } else if (arg == "--seed") {
             s.seed = parse_seed(value());
         } else if (arg == "--aov") {
-            const std::string name = value();
-            if (name == "depth")
-                s.aov = aov_kind::depth;
-            else if (name == "normal")
-                s.aov = aov_kind::normal;
-            else if (name == "position")
-                s.aov = aov_kind::position;
-            else if (name == "rays")
-                s.aov = aov_kind::rays;
-            else
-                throw rt::error("option --aov: expected one of depth, normal, position, rays, found " + quoted(name) +
-                                "; see --help");
+            s.aov = parse_name<rt::aov_kind>(arg, value(), rt::aov_from_name, "depth, normal, position, rays");
         } else if (arg == "--pattern") {
             const std::string name = value();
             if (name == "zoneplate")
@@ -232,79 +218,8 @@ settings read_arguments(stage::arguments& args)
     return s;
 }
 
-bool has_obj_extension(const std::string& path)
-{
-    if (path.size() < 4)
-        return false;
-    std::string tail = path.substr(path.size() - 4);
-    for (char& c : tail)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    return tail == ".obj";
-}
-
-/// A scene for a bare OBJ model: the model with its own materials (the
-/// default material where it has none), a camera that frames its bounding
-/// sphere from the front and a little above, and one light at the camera.
-rt::scene scene_from_obj(const std::string& path, int nx, int ny)
-{
-    rt::obj_result obj = rt::load_obj(path);
-    rt::scene s;
-    s.width = nx;
-    s.height = ny;
-    s.materials = obj.materials;
-    s.shapes.emplace_back(std::move(obj.geometry));
-    const rt::aabb box = rt::scene_bounds(s);
-    if (box.empty())
-        throw rt::error(rt::source_location{path}, "expected a model with at least one triangle, found none");
-    const rt::real pi = rt::real(3.14159265358979323846);
-    const rt::vec3 centre = box.center();
-    const rt::real radius = std::max(glm::length(box.extent()) / 2, rt::real(1e-6));
-    const rt::real fov = 40;
-    // the bounding sphere fits the narrower of the two fields of view, with a 10% margin
-    const rt::real half = std::min(fov / 2 * pi / 180,
-                                   std::atan(std::tan(fov / 2 * pi / 180) * rt::real(s.width) / rt::real(s.height)));
-    const rt::real distance = rt::real(1.1) * radius / std::sin(half);
-    s.cam.kind = rt::projection::perspective;
-    s.cam.look_at = centre;
-    s.cam.eye = centre + distance * glm::normalize(rt::vec3(0, rt::real(0.3), 1));
-    s.cam.up = rt::vec3(0, 1, 0);
-    s.cam.fov_degrees = fov;
-    rt::light lamp;
-    lamp.kind = rt::light_kind::point;
-    lamp.position = s.cam.eye;
-    lamp.intensity = rt::color(1.0f);
-    s.lights.push_back(lamp);
-    return s;
-}
-
-using radiance_function = std::function<rt::color(const rt::ray&, rt::sample_context&)>;
-
-/// What each sample computes, for a scene.
-radiance_function make_radiance(const rt::scene& scene, aov_kind aov)
-{
-    switch (aov) {
-    case aov_kind::rays:
-        return [](const rt::ray& r, rt::sample_context&) { return rt::direction_to_color(r.direction); };
-    case aov_kind::depth:
-    case aov_kind::normal:
-    case aov_kind::position:
-        // TODO(stage 04): intersect the scene (the BVH of stage 04) and return
-        // the hit's distance t, its unit normal (n + 1)/2 or its position.
-        throw rt::error("option --aov: depth, normal and position need the scene intersection of stage 04, "
-                        "which is not connected to this command yet; use --aov rays");
-    case aov_kind::none: break;
-    }
-    // TODO(shading): the integrator of stages 05-07 goes here: trace the ray
-    // into `scene` (scene.max_depth mirror bounces, shadows, lights) and return
-    // its radiance; sample_context::rng for random choices and ctx.rays += n
-    // for the secondary rays it traces.
-    (void)scene;
-    throw rt::error("the shaded image needs stages 05-07, which are not connected to this command yet; "
-                    "use --aov rays or --pattern zoneplate");
-}
-
 /// An analytic test pattern of the film position (x, y) in an nx x ny image.
-radiance_function make_pattern(pattern_kind pattern, int nx, int ny)
+rt::radiance_function make_pattern(pattern_kind pattern, int nx, int ny)
 {
     const double cx = nx / 2.0, cy = ny / 2.0;
     if (pattern == pattern_kind::zoneplate) {
@@ -340,25 +255,21 @@ int main(int argc, char** argv)
         if (set.input.empty() == (set.pattern == pattern_kind::none))
             throw rt::error(set.input.empty() ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
                                               : "expected a scene file or --pattern, found both; see --help");
-        if (set.pattern != pattern_kind::none && set.aov != aov_kind::none)
+        if (set.pattern != pattern_kind::none && set.aov != rt::aov_kind::none)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
         rt::check_image_output(set.output); // fail before the work, not after it
 
         rt::scene scene;
-        if (set.pattern != pattern_kind::none) {
+        if (set.pattern != pattern_kind::none)
             scene.width = scene.height = 512;
-        } else if (has_obj_extension(set.input)) {
-            scene = scene_from_obj(set.input, set.width.value_or(scene.width), set.height.value_or(scene.height));
-        } else {
-            scene = rt::load_scene(set.input);
-        }
+        else
+            scene = rt::load_input(set.input, set.width, set.height);
 
         rt::render_options options;
         options.width = set.width.value_or(scene.width);
         options.height = set.height.value_or(scene.height);
         options.samples_per_pixel = set.spp.value_or(scene.samples);
-        options.sampler =
-            set.sampler.value_or(options.samples_per_pixel == 1 ? rt::sampler_kind::center : rt::sampler_kind::jittered);
+        options.sampler = set.sampler.value_or(rt::default_sampler(options.samples_per_pixel));
         options.reconstruction = rt::make_filter(
             set.filter, set.filter_radius ? std::optional<rt::real>(rt::real(*set.filter_radius)) : std::nullopt);
         options.threads = set.threads;
@@ -367,26 +278,21 @@ int main(int argc, char** argv)
         scene.max_depth = set.max_depth.value_or(scene.max_depth);
         rt::check_render_options(options);
 
-        radiance_function radiance;
-        std::function<rt::ray(rt::real, rt::real)> ray_at;
+        rt::radiance_function radiance;
+        rt::ray_source ray_at;
         if (set.pattern != pattern_kind::none) {
             radiance = make_pattern(set.pattern, options.width, options.height);
             ray_at = [](rt::real x, rt::real y) { return rt::ray{rt::vec3(x, y, 0), rt::vec3(0, 0, -1)}; };
         } else {
-            radiance = make_radiance(scene, set.aov);
-            const rt::ray_generator gen = rt::make_ray_generator(scene.cam, options.width, options.height);
-            ray_at = [gen](rt::real x, rt::real y) { return rt::generate_ray(gen, x, y); };
+            radiance = rt::make_radiance(scene, set.aov);
+            ray_at = rt::camera_rays(scene.cam, options.width, options.height);
         }
 
         rt::progress_bar bar(std::cerr, !set.quiet && rt::stderr_is_terminal());
         const rt::render_result result = rt::render(options, ray_at, radiance, bar.callback());
         bar.finish();
 
-        // AOVs are data, not light: stored as they are (clamped, linear bytes)
-        rt::encoding encoding = set.encoding;
-        if (set.aov != aov_kind::none)
-            encoding = rt::encoding{0.0f, rt::tonemap_kind::clamp, rt::transfer_kind::gamma, 1.0f};
-        rt::save_image(set.output, result.pixels, encoding);
+        rt::save_image(set.output, result.pixels, rt::output_encoding(set.aov, set.encoding));
         if (!set.quiet)
             std::cerr << "wrote " << set.output << ": " << rt::summary_line(result.stats) << " ("
                       << rt::name_of(options.sampler) << ", " << rt::name_of(options.reconstruction.kind) << " "
