@@ -16,12 +16,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <utility>
+#include <vector>
 
 #include "camera.hpp"
 #include "encoding.hpp"
@@ -180,6 +183,66 @@ inline encoding output_encoding(aov_kind aov, const encoding& shaded)
     if (aov == aov_kind::none)
         return shaded;
     return encoding{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
+}
+
+namespace detail {
+
+/// `value` as the shortest text that the scene loader (which reads a double
+/// and rounds it to rt::real) turns back into exactly `value`; the 17 digits of
+/// the double otherwise, which always come back exactly.
+inline std::string exact_number_text(real value)
+{
+    char buffer[64];
+    auto read_back = [](const char* first, const char* last) {
+        double parsed = 0;
+        std::from_chars(first, last, parsed);
+        return real(parsed);
+    };
+    const std::to_chars_result shortest = std::to_chars(buffer, buffer + sizeof buffer, value);
+    if (shortest.ec == std::errc() && read_back(buffer, shortest.ptr) == value)
+        return std::string(buffer, shortest.ptr);
+    const std::to_chars_result full =
+        std::to_chars(buffer, buffer + sizeof buffer, double(value), std::chars_format::general, 17);
+    return std::string(buffer, full.ptr);
+}
+
+inline std::string exact_vector_text(const vec3& v)
+{
+    return exact_number_text(v.x) + ' ' + exact_number_text(v.y) + ' ' + exact_number_text(v.z);
+}
+
+} // namespace detail
+
+/// The camera as the arguments of a scene file's `camera` statement
+/// (docs/scene-format.md), every number written so that it reads back exactly:
+/// "perspective eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 fov 40 focal 1".
+inline std::string camera_statement(const camera& cam)
+{
+    std::string text = cam.kind == projection::perspective ? "perspective" : "orthographic";
+    text += " eye " + detail::exact_vector_text(cam.eye);
+    text += " look_at " + detail::exact_vector_text(cam.look_at);
+    text += " up " + detail::exact_vector_text(cam.up);
+    if (cam.plane)
+        text += " window " + detail::exact_number_text(cam.plane->l) + ' ' + detail::exact_number_text(cam.plane->r) +
+                ' ' + detail::exact_number_text(cam.plane->b) + ' ' + detail::exact_number_text(cam.plane->t);
+    else if (cam.fov_degrees)
+        text += " fov " + detail::exact_number_text(*cam.fov_degrees);
+    text += " focal " + detail::exact_number_text(cam.focal_distance);
+    return text;
+}
+
+/// A camera from the arguments of a `camera` statement (what camera_statement
+/// writes), checked as the scene loader checks it; `name` starts its messages.
+/// Columns in messages count in `arguments`.
+inline camera parse_camera_statement(const std::string& arguments, const std::string& name = "--camera")
+{
+    std::vector<token> tokens = detail::tokenize(arguments, source_location{name, 1});
+    tokens.insert(tokens.begin(), token{"camera", 0});
+    statement line(name, 1, std::move(tokens), int(arguments.size()) + 1);
+    camera cam;
+    parse_camera(line, cam);
+    line.end();
+    return cam;
 }
 
 } // namespace rt

@@ -48,6 +48,9 @@ const char* usage =
     "  --filter F            box | tent | gaussian | mitchell (default box)\n"
     "  --filter-radius R     the filter's radius in pixels, (0, 16] (default: the filter's own)\n"
     "  --threads N           worker threads, 0 = all cores (default 0)\n"
+    "  --camera \"ARGS\"       the camera instead of the scene's, as the arguments of a scene\n"
+    "                        file's camera statement: \"perspective eye X Y Z look_at X Y Z\n"
+    "                        up X Y Z fov DEGREES\" (the viewer prints them)\n"
     "  --max-depth N         mirror recursion limit, 0..64 (default: the scene's max_depth)\n"
     "  --tonemap T           clamp | reinhard | aces (default clamp)\n"
     "  --exposure STOPS      scale the image by 2^STOPS before the tone map (default 0)\n"
@@ -147,6 +150,7 @@ struct settings {
     rt::aov_kind aov = rt::aov_kind::none;
     pattern_kind pattern = pattern_kind::none;
     std::optional<rt::crop_window> crop;
+    std::optional<rt::camera> camera;
     bool quiet = false;
     bool help = false;
 };
@@ -176,6 +180,8 @@ settings read_arguments(stage::arguments& args)
             s.filter_radius = parse_number(arg, value(), 0, 16, true);
         } else if (arg == "--threads") {
             s.threads = int(parse_integer(arg, value(), 0, 1024));
+        } else if (arg == "--camera") {
+            s.camera = rt::parse_camera_statement(value(), "--camera");
         } else if (arg == "--max-depth") {
             s.max_depth = int(parse_integer(arg, value(), 0, 64));
         } else if (arg == "--tonemap") {
@@ -257,6 +263,8 @@ int main(int argc, char** argv)
                                               : "expected a scene file or --pattern, found both; see --help");
         if (set.pattern != pattern_kind::none && set.aov != rt::aov_kind::none)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
+        if (set.pattern != pattern_kind::none && set.camera)
+            throw rt::error("expected --camera or --pattern, found both; a pattern has no camera");
         rt::check_image_output(set.output); // fail before the work, not after it
 
         rt::scene scene;
@@ -264,6 +272,8 @@ int main(int argc, char** argv)
             scene.width = scene.height = 512;
         else
             scene = rt::load_input(set.input, set.width, set.height);
+        if (set.camera)
+            scene.cam = *set.camera;
 
         rt::render_options options;
         options.width = set.width.value_or(scene.width);
