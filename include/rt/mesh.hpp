@@ -1,20 +1,34 @@
 // mesh.hpp - an indexed triangle mesh, as an OBJ file gives it (stage 04).
 //
 // A mesh stores only what its file provides: normals and texture coordinates
-// are empty when the file has none.
+// are empty when the file has none. A triangle whose file face gave no normal
+// (or texture coordinate) indices while others did has no_index there.
+//
+// Shading normals are interpolated across each triangle (Phong's normal
+// interpolation, as in Physically Based Rendering, 3rd ed., sec. 3.6.2): at the
+// hit with barycentrics (b0, b1, b2) the normal is
+//     n = normalize(b0 na + b1 nb + b2 nc),
+// turned to the side of the geometric normal that faces the ray.
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "hit_record.hpp"
+#include "ray.hpp"
+#include "triangle.hpp"
 #include "vec.hpp"
 
 namespace rt {
 
 using index3 = std::array<std::uint32_t, 3>;
+
+/// Marks a triangle corner without a normal or texture coordinate index.
+constexpr std::uint32_t no_index = 0xffffffffu;
 
 struct mesh {
     std::string source;                    ///< the path as the scene file wrote it
@@ -28,5 +42,92 @@ struct mesh {
     int material = -1;                     ///< index into scene::materials; -1: the default material
     std::size_t dropped_degenerate = 0;    ///< zero-area triangles left out when loading
 };
+
+/// The material of triangle i: its MTL material if the file gave one, else the mesh's.
+inline int triangle_material(const mesh& m, std::size_t i)
+{
+    if (i < m.face_materials.size() && m.face_materials[i] >= 0)
+        return m.face_materials[i];
+    return m.material;
+}
+
+/// Completes a hit record that fill_triangle_record filled for triangle i of
+/// `m`: the primitive index, the material, and the interpolated shading normal
+/// when the mesh has normals for all three corners (else the geometric normal
+/// stays). A shading normal that interpolates to zero keeps the geometric one.
+inline void complete_mesh_hit(const mesh& m, std::size_t i, hit_record& rec)
+{
+    rec.primitive = std::uint32_t(i);
+    rec.material = triangle_material(m, i);
+    if (m.normals.empty() || i >= m.normal_indices.size())
+        return;
+    const index3& corner = m.normal_indices[i];
+    if (corner[0] == no_index || corner[1] == no_index || corner[2] == no_index)
+        return;
+    const real b0 = 1 - rec.b1 - rec.b2;
+    const vec3 n = b0 * m.normals[corner[0]] + rec.b1 * m.normals[corner[1]] + rec.b2 * m.normals[corner[2]];
+    const real length = glm::length(n);
+    if (!(length > 0) || !std::isfinite(length))
+        return;
+    const vec3 unit = n / length;
+    rec.normal = glm::dot(unit, rec.geometric_normal) < 0 ? -unit : unit;
+}
+
+/// The nine corner coordinates of triangle i (a.x a.y a.z b.x ... c.z), as
+/// intersect_watertight takes them.
+inline void triangle_corners(const mesh& m, std::size_t i, real v[9])
+{
+    const index3& face = m.triangles[i];
+    for (int k = 0; k < 3; ++k) {
+        const vec3& p = m.positions[face[std::size_t(k)]];
+        v[3 * k] = p.x;
+        v[3 * k + 1] = p.y;
+        v[3 * k + 2] = p.z;
+    }
+}
+
+/// The watertight hit of triangle i of `m` in [tmin, tmax], the record complete.
+inline bool hit_mesh_triangle(const mesh& m, std::size_t i, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    real v[9];
+    triangle_corners(m, i, v);
+    triangle_hit h;
+    if (!intersect_watertight(make_watertight_ray(r), v, tmin, tmax, h))
+        return false;
+    const index3& face = m.triangles[i];
+    fill_triangle_record(m.positions[face[0]], m.positions[face[1]], m.positions[face[2]], r, h, rec);
+    complete_mesh_hit(m, i, rec);
+    return true;
+}
+
+/// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in
+/// turn (the BVH of intersect.hpp does the same work faster). When two
+/// triangles give the same t, the later one is kept, as the scene's flat list
+/// does.
+inline bool hit_mesh(const mesh& m, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    const watertight_ray w = make_watertight_ray(r);
+    bool found = false;
+    std::size_t best = 0;
+    triangle_hit best_hit;
+    real closest = tmax;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        real v[9];
+        triangle_corners(m, i, v);
+        triangle_hit h;
+        if (intersect_watertight(w, v, tmin, closest, h)) {
+            found = true;
+            best = i;
+            best_hit = h;
+            closest = h.t;
+        }
+    }
+    if (!found)
+        return false;
+    const index3& face = m.triangles[best];
+    fill_triangle_record(m.positions[face[0]], m.positions[face[1]], m.positions[face[2]], r, best_hit, rec);
+    complete_mesh_hit(m, best, rec);
+    return true;
+}
 
 } // namespace rt

@@ -1,17 +1,49 @@
 // obj_loader.hpp - Wavefront OBJ meshes through tinyobjloader (stage 04).
 //
-// tinyobjloader (Debian's libtinyobjloader, linked through rt::rt) parses the
-// file; this header turns its output into an rt::mesh that stores only what the
-// file provides, triangulates polygons (fans), drops zero-area triangles with a
-// count, maps MTL colours to rt materials, and reports every problem as one
-// line "file:line: expected ..., found ...; hint".
+// What is read (the formats of Wavefront's Advanced Visualizer documentation,
+// "Object Files (.obj)" and "Material Library Files (.mtl)"):
+//   v x y z            a position (extra numbers, such as vertex colours, are allowed and ignored)
+//   vn x y z           a normal          vt u [v [w]]   a texture coordinate
+//   f v[/vt][/vn] ...  a polygon of 3 or more corners; indices count from 1 in
+//                      order of appearance, a negative index counts back from the
+//                      latest element (-1 is the last one so far)
+//   mtllib a.mtl       material libraries, beside the OBJ file
+//   usemtl name        the material of the faces that follow
+// and in an MTL file: newmtl name, Ka/Kd/Ks r [g b], Ns exponent, illum model.
+// Everything else (groups, smoothing, texture maps, curves) is ignored.
+//
+// How: the file is read once into memory and checked line by line here, so
+// that every problem is one line "file:line:col: expected ..., found ...;
+// hint" (tinyobjloader reads a bad number as 0, drops faces with bad indices
+// with a warning and does not say where). The positions are taken from this
+// check, parsed at the precision of rt::real (Debian's tinyobjloader is built
+// with float). tinyobjloader (Debian's libtinyobjloader, linked through rt::rt)
+// then reads the faces and triangulates polygons (a quad along its shorter
+// diagonal, larger polygons by ear clipping); the MTL files are parsed here and
+// handed to it by name, so usemtl picks the same materials in both.
+//
+// The mesh stores only what the file provides: normals (texture coordinates)
+// only when the faces refer to them. Zero-area triangles are dropped and
+// counted in mesh::dropped_degenerate. MTL colours map to rt::material: Ka ka
+// (kd when absent, as in scene files), Kd kd, Ks ks, Ns p, and for the
+// illumination models "reflection on, ray trace on" (illum 3 and 5) km = Ks.
+// Names (newmtl, usemtl) are one word, as tinyobjloader reads them.
 #pragma once
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <streambuf>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include <tiny_obj_loader.h>
@@ -27,179 +59,541 @@ namespace rt {
 struct obj_result {
     mesh geometry;
     std::vector<material> materials;
+    std::size_t polygons = 0;  ///< face statements in the file (before triangulation)
 };
 
 /// Limits checked before allocating, so a hostile file cannot exhaust memory.
 struct obj_limits {
     std::size_t max_triangles = std::size_t(1) << 26;  ///< 67 million
+    std::uintmax_t max_bytes = std::uintmax_t(1) << 32; ///< 4 GiB of OBJ text
 };
 
 namespace detail {
 
-/// The 1-based line of the `face_number`-th face statement ("f ...") of an OBJ
-/// file, or 0 when it cannot be found; used only to point an error message at
-/// the right line (tinyobjloader does not report face lines).
-inline int obj_face_line(const std::filesystem::path& path, std::size_t face_number)
-{
-    std::ifstream in(path);
-    std::string text;
-    std::size_t faces = 0;
-    for (int line = 1; std::getline(in, text); ++line) {
-        std::size_t first = text.find_first_not_of(" \t");
-        if (first != std::string::npos && text[first] == 'f' && first + 1 < text.size() &&
-            (text[first + 1] == ' ' || text[first + 1] == '\t')) {
-            if (faces == face_number)
-                return line;
-            ++faces;
-        }
+/// One line of an OBJ or MTL file, read word by word; each reader names what
+/// it expects, for the error message.
+class obj_line {
+public:
+    obj_line(const std::string& file, int number, const char* first, const char* last)
+        : file_(file), number_(number), begin_(first), next_(first), end_(last)
+    {
+        skip_blanks();
     }
-    return 0;
+
+    bool done() const { return next_ == end_ || *next_ == '#'; }
+    source_location here() const { return {file_, number_, int(next_ - begin_) + 1}; }
+
+    std::string word()
+    {
+        const char* start = next_;
+        while (next_ != end_ && *next_ != ' ' && *next_ != '\t')
+            ++next_;
+        std::string text(start, next_);
+        skip_blanks();
+        return text;
+    }
+
+    error unexpected(const std::string& expected, const std::string& hint = {}) const
+    {
+        return parse_error(here(), expected, done() ? "the end of the line" : "'" + peek_word() + "'", hint);
+    }
+
+    /// A finite number, at the precision of rt::real.
+    real number(const std::string& what)
+    {
+        if (done())
+            throw unexpected("a number for " + what);
+        const char* start = next_;
+        if (*start == '+')
+            ++start;
+        const char* stop = start;
+        while (stop != end_ && *stop != ' ' && *stop != '\t')
+            ++stop;
+        real value = 0;
+        const auto [end, status] = std::from_chars(start, stop, value);
+        if (status != std::errc() || end != stop)
+            throw unexpected("a number for " + what);
+        if (!std::isfinite(value))
+            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
+        next_ = stop;
+        skip_blanks();
+        return value;
+    }
+
+    bool number_follows() const
+    {
+        if (done())
+            return false;
+        const char c = *next_;
+        return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.';
+    }
+
+    /// One face corner "v", "v/vt", "v//vn" or "v/vt/vn": three indices as
+    /// written (0: absent) and the column each starts at.
+    struct corner {
+        long index[3] = {0, 0, 0};
+        int column[3] = {0, 0, 0};
+    };
+
+    corner face_corner()
+    {
+        corner c;
+        const char* stop = next_;
+        while (stop != end_ && *stop != ' ' && *stop != '\t')
+            ++stop;
+        const char* p = next_;
+        for (int part = 0; part < 3; ++part) {
+            c.column[part] = int(p - begin_) + 1;
+            const char* slash = p;
+            while (slash != stop && *slash != '/')
+                ++slash;
+            if (slash != p) {
+                const auto [end, status] = std::from_chars(p, slash, c.index[part]);
+                if (status != std::errc() || end != slash || c.index[part] == 0)
+                    throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
+                                      "'" + std::string(p, slash) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+            } else if (part == 0) {
+                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + std::string(p, stop) + "'",
+                                  "a corner is v, v/vt, v//vn or v/vt/vn");
+            }
+            if (slash == stop)
+                break;
+            p = slash + 1;
+            if (part == 2)
+                throw parse_error({file_, number_, int(slash - begin_) + 1}, "at most three indices in a corner",
+                                  "another '/'", "a corner is v, v/vt, v//vn or v/vt/vn");
+        }
+        next_ = stop;
+        skip_blanks();
+        return c;
+    }
+
+private:
+    void skip_blanks()
+    {
+        while (next_ != end_ && (*next_ == ' ' || *next_ == '\t' || *next_ == '\r'))
+            ++next_;
+    }
+
+    std::string peek_word() const
+    {
+        const char* stop = next_;
+        while (stop != end_ && *stop != ' ' && *stop != '\t' && stop - next_ < 24)
+            ++stop;
+        std::string shown;
+        for (const char* p = next_; p != stop; ++p)
+            shown += (*p >= 32 && *p < 127) ? *p : '?';
+        return shown;
+    }
+
+    const std::string& file_;
+    int number_;
+    const char* begin_;
+    const char* next_;
+    const char* end_;
+};
+
+/// Calls `each(line, number)` for every line of `text` (without the end of
+/// line), after checking that it is text.
+template <class Each>
+void for_each_line(const std::string& text, const std::string& file, Each&& each)
+{
+    const char* p = text.data();
+    const char* const end = p + text.size();
+    int number = 0;
+    while (p != end) {
+        ++number;
+        const char* stop = p;
+        while (stop != end && *stop != '\n') {
+            const unsigned char c = static_cast<unsigned char>(*stop);
+            if (c < 32 && c != '\t' && c != '\r')
+                throw parse_error({file, number, int(stop - p) + 1}, "text",
+                                  "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
+            ++stop;
+        }
+        obj_line line(file, number, p, stop);
+        each(line, number);
+        p = stop == end ? end : stop + 1;
+    }
 }
 
-/// A tinyobjloader message (possibly several lines) as one line.
-inline std::string one_line(std::string text)
+inline std::string read_text(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes,
+                             const source_location& named_at)
 {
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
-        text.pop_back();
-    for (char& c : text)
-        if (c == '\n' || c == '\r')
-            c = ' ';
+    const std::string name = path.string();
+    std::error_code ec;
+    const source_location at = named_at.file.empty() ? source_location{name} : named_at;
+    if (std::filesystem::is_directory(path, ec))
+        throw error(at, "expected " + what + " file, found a folder '" + name + "'; name the file itself");
+    if (!std::filesystem::exists(path, ec))
+        throw error(at, "expected " + what + " file, found no such file '" + name + "'; check the path");
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > max_bytes)
+        throw error(at, "expected " + what + " file of at most " + std::to_string(max_bytes) + " bytes, found " +
+                            std::to_string(size) + "; raise obj_limits::max_bytes");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw error(at, "expected a readable " + what + " file, found one that cannot be opened: '" + name +
+                            "'; check its permissions");
+    std::string text;
+    if (!ec)
+        text.reserve(std::size_t(size));
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad())
+        throw error(at, "reading failed; is the file complete?");
     return text;
 }
 
-inline color to_color(const tinyobj::real_t rgb[3])
+/// One MTL material as read here, with what tinyobjloader would not tell: which
+/// statements were present.
+struct mtl_entry {
+    material value;
+    bool has_ka = false;
+    bool has_ns = false;
+    int illum = 2;
+};
+
+/// Parses one MTL file into `entries` (see the top of this file).
+inline void read_mtl(const std::filesystem::path& path, const source_location& named_at, std::uintmax_t max_bytes,
+                     std::vector<mtl_entry>& entries)
 {
-    return color(float(rgb[0]), float(rgb[1]), float(rgb[2]));
+    const std::string name = path.string();
+    const std::string text = read_text(path, "the material library", max_bytes, named_at);
+    for_each_line(text, name, [&](obj_line& line, int) {
+        if (line.done())
+            return;
+        const source_location keyword_at = line.here();
+        const std::string keyword = line.word();
+        if (keyword == "newmtl") {
+            if (line.done())
+                throw line.unexpected("a material name after newmtl");
+            mtl_entry entry;
+            entry.value.name = line.word();
+            entries.push_back(entry);
+            return;
+        }
+        const bool colour = keyword == "Ka" || keyword == "Kd" || keyword == "Ks";
+        const bool known = colour || keyword == "Ns" || keyword == "illum";
+        if (!known)
+            return; // Ke, Ni, d, Tr, maps ...: not used by rt
+        if (entries.empty())
+            throw parse_error(keyword_at, "'newmtl name' before '" + keyword + "'", "'" + keyword + "' first",
+                              "every material starts with newmtl");
+        mtl_entry& entry = entries.back();
+        if (colour) {
+            if (!line.done() && !line.number_follows())
+                throw line.unexpected("an RGB colour for " + keyword, "rt reads 'K? r g b' (not spectral or xyz)");
+            color c;
+            for (int channel = 0; channel < 3; ++channel) {
+                if (channel == 1 && line.done()) { // "Kd r" means r r r
+                    c.g = c.b = c.r;
+                    break;
+                }
+                const source_location at = line.here();
+                const real value = line.number(keyword + " " + "rgb"[channel]);
+                if (value < 0)
+                    throw parse_error(at, "a non-negative " + keyword, std::to_string(value),
+                                      "colours cannot be negative");
+                c[channel] = float(value);
+            }
+            if (keyword == "Ka") {
+                entry.value.ka = c;
+                entry.has_ka = true;
+            } else if (keyword == "Kd") {
+                entry.value.kd = c;
+            } else {
+                entry.value.ks = c;
+            }
+        } else if (keyword == "Ns") {
+            const source_location at = line.here();
+            entry.value.p = line.number("the Phong exponent Ns");
+            if (entry.value.p < 0)
+                throw parse_error(at, "a non-negative Ns", std::to_string(entry.value.p));
+            entry.has_ns = true;
+        } else {
+            const source_location at = line.here();
+            const real model = line.number("the illumination model");
+            if (!(model >= 0 && model <= 10 && model == std::floor(model)))
+                throw parse_error(at, "an illumination model 0 to 10", std::to_string(model));
+            entry.illum = int(model);
+        }
+        if (!line.done())
+            throw line.unexpected("the end of the line", "'" + keyword + "' takes fewer numbers");
+    });
+}
+
+/// Hands the MTL materials read above to tinyobjloader by name, so that its
+/// material ids index `entries` (it then never parses an MTL file itself).
+class mtl_names_reader : public tinyobj::MaterialReader {
+public:
+    explicit mtl_names_reader(const std::vector<mtl_entry>& entries) : entries_(entries) {}
+
+    bool operator()(const std::string&, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* names, std::string*, std::string*) override
+    {
+        if (done_)
+            return true;
+        done_ = true;
+        for (const mtl_entry& entry : entries_) {
+            tinyobj::material_t m;
+            m.name = entry.value.name;
+            if (names->count(m.name) == 0) // the first material of a name wins, as in the check
+                (*names)[m.name] = int(materials->size());
+            materials->push_back(m);
+        }
+        return true;
+    }
+
+private:
+    const std::vector<mtl_entry>& entries_;
+    bool done_ = false;
+};
+
+/// A read-only stream over text already in memory.
+class memory_buffer : public std::streambuf {
+public:
+    explicit memory_buffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+};
+
+/// What the line-by-line check of an OBJ file found.
+struct obj_check {
+    std::vector<vec3> positions;
+    std::size_t normals = 0, texcoords = 0, polygons = 0, triangles = 0;
+    // the largest positive index of each kind and where it was written, checked
+    // at the end because a face may refer to elements defined after it
+    long largest[3] = {0, 0, 0};
+    source_location largest_at[3];
+};
+
+inline obj_check check_obj(const std::string& text, const std::string& name, const std::filesystem::path& folder,
+                           const obj_limits& limits, std::vector<mtl_entry>& materials)
+{
+    obj_check out;
+    std::vector<std::string> loaded_libraries;
+    bool any_library = false;
+    for_each_line(text, name, [&](obj_line& line, int number) {
+        if (line.done())
+            return;
+        const source_location keyword_at = line.here();
+        const std::string keyword = line.word();
+        if (keyword == "v") {
+            vec3 p;
+            p.x = line.number("the vertex x");
+            p.y = line.number("the vertex y");
+            p.z = line.number("the vertex z");
+            while (!line.done())
+                line.number("a vertex's extra value (w or colour)");
+            out.positions.push_back(p);
+        } else if (keyword == "vn") {
+            line.number("the normal x");
+            line.number("the normal y");
+            line.number("the normal z");
+            if (!line.done())
+                throw line.unexpected("the end of the line", "a normal has three numbers");
+            ++out.normals;
+        } else if (keyword == "vt") {
+            line.number("the texture coordinate u");
+            for (int k = 0; k < 2 && !line.done(); ++k)
+                line.number("a texture coordinate");
+            if (!line.done())
+                throw line.unexpected("the end of the line", "a texture coordinate has at most three numbers");
+            ++out.texcoords;
+        } else if (keyword == "f" || keyword == "l" || keyword == "p") {
+            const std::size_t defined[3] = {out.positions.size(), out.texcoords, out.normals};
+            const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
+            int corners = 0;
+            while (!line.done()) {
+                const obj_line::corner c = line.face_corner();
+                ++corners;
+                for (int k = 0; k < 3; ++k) {
+                    const long index = c.index[k];
+                    if (index < 0 && long(defined[k]) + index < 0)
+                        throw parse_error({name, number, c.column[k]},
+                                          std::string("a relative ") + kinds[k] + " index from -1 to -" +
+                                              std::to_string(defined[k]),
+                                          std::to_string(index),
+                                          "a negative index counts back from the latest '" +
+                                              std::string(k == 0 ? "v" : k == 1 ? "vt" : "vn") + "' line");
+                    if (index > out.largest[k]) {
+                        out.largest[k] = index;
+                        out.largest_at[k] = {name, number, c.column[k]};
+                    }
+                }
+            }
+            if (keyword == "f") {
+                if (corners < 3)
+                    throw parse_error(keyword_at, "a face of at least 3 corners", std::to_string(corners),
+                                      "'f' lists three or more vertex indices");
+                ++out.polygons;
+                out.triangles += std::size_t(corners - 2);
+                if (out.triangles > limits.max_triangles)
+                    throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
+                                      "more", "raise obj_limits::max_triangles");
+            }
+        } else if (keyword == "mtllib") {
+            any_library = true;
+            if (line.done())
+                throw line.unexpected("a material library file name after mtllib");
+            while (!line.done()) {
+                const source_location at = line.here();
+                const std::string file = line.word();
+                if (std::find(loaded_libraries.begin(), loaded_libraries.end(), file) != loaded_libraries.end())
+                    continue;
+                loaded_libraries.push_back(file);
+                read_mtl(folder / file, at, limits.max_bytes, materials);
+            }
+        } else if (keyword == "usemtl") {
+            if (line.done())
+                throw line.unexpected("a material name after usemtl");
+            const source_location at = line.here();
+            const std::string wanted = line.word();
+            const bool declared = std::any_of(materials.begin(), materials.end(),
+                                              [&](const mtl_entry& m) { return m.value.name == wanted; });
+            if (!declared) {
+                if (!any_library)
+                    throw parse_error(at, "a material declared in a material library", "'" + wanted + "'",
+                                      "the file has no 'mtllib' line before this one; add one, or delete the usemtl lines");
+                std::vector<std::string> known;
+                for (const mtl_entry& m : materials)
+                    known.push_back(m.value.name);
+                std::string list;
+                for (const std::string& k : known)
+                    list += (list.empty() ? "" : ", ") + k;
+                throw parse_error(at, "a material declared in the material library", "'" + wanted + "'",
+                                  list.empty() ? "the library declares none" : "known: " + list);
+            }
+        }
+        // any other statement (o, g, s, comments, curves ...) is not used by rt
+    });
+    const std::size_t counts[3] = {out.positions.size(), out.texcoords, out.normals};
+    const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
+    const char* lines[3] = {"v", "vt", "vn"};
+    for (int k = 0; k < 3; ++k)
+        if (out.largest[k] > long(counts[k]))
+            throw parse_error(out.largest_at[k],
+                              std::string("a ") + kinds[k] + " index from 1 to " + std::to_string(counts[k]),
+                              std::to_string(out.largest[k]),
+                              "the file has " + std::to_string(counts[k]) + " '" + lines[k] + "' lines");
+    return out;
 }
 
 } // namespace detail
 
-/// Loads an OBJ file (and the MTL files it names, from its folder).
-/// Throws rt::error with file:line for a missing, unreadable or malformed file.
+/// Loads an OBJ file (and the MTL files it names, from its folder). Throws
+/// rt::error with file:line:col for a missing, unreadable or malformed file.
 inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& limits = {})
 {
     const std::string name = path.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        throw error(source_location{name}, "expected an OBJ file, found no such file; check the path");
-    if (std::filesystem::is_directory(path, ec))
-        throw error(source_location{name}, "expected an OBJ file, found a folder; name the .obj file itself");
-    if (!std::ifstream(path))
-        throw error(source_location{name}, "expected a readable OBJ file, found one that cannot be opened; check its permissions");
+    std::string text = detail::read_text(path, "an OBJ", limits.max_bytes, {});
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    std::vector<detail::mtl_entry> mtl;
+    detail::obj_check checked = detail::check_obj(text, name, folder, limits, mtl);
 
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    config.mtl_search_path = path.has_parent_path() ? path.parent_path().string() : std::string(".");
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(name, config))
-        throw error(source_location{name}, "expected a valid OBJ file, found: " + detail::one_line(reader.Error()));
-    const std::string warning = detail::one_line(reader.Warning());
-    if (warning.find("not found") != std::string::npos && warning.find("aterial") != std::string::npos)
-        throw error(source_location{name},
-                    "expected the material library it names, found: " + warning + "; put the .mtl file beside the .obj");
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> groups;
+    std::vector<tinyobj::material_t> tiny_materials;
+    std::string warning, failure;
+    detail::memory_buffer buffer(text);
+    std::istream stream(&buffer);
+    detail::mtl_names_reader names(mtl);
+    if (!tinyobj::LoadObj(&attrib, &groups, &tiny_materials, &warning, &failure, &stream, &names, true, false)) {
+        std::string message = failure;
+        for (char& c : message)
+            if (c == '\n' || c == '\r')
+                c = ' ';
+        throw error(source_location{name}, "expected a valid OBJ file, found: " + message);
+    }
 
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
     obj_result result;
+    result.polygons = checked.polygons;
     mesh& m = result.geometry;
     m.source = name;
-
-    const std::size_t vertex_count = attrib.vertices.size() / 3;
-    const std::size_t normal_count = attrib.normals.size() / 3;
-    const std::size_t texcoord_count = attrib.texcoords.size() / 2;
-    std::size_t total_faces = 0;
-    for (const tinyobj::shape_t& group : reader.GetShapes())
-        total_faces += group.mesh.num_face_vertices.size();
-    if (total_faces > limits.max_triangles)
-        throw error(source_location{name}, "expected at most " + std::to_string(limits.max_triangles) +
-                                               " triangles, found " + std::to_string(total_faces) +
-                                               "; raise obj_limits::max_triangles");
-
-    for (std::size_t i = 0; i < vertex_count; ++i) {
-        const vec3 p(real(attrib.vertices[3 * i]), real(attrib.vertices[3 * i + 1]), real(attrib.vertices[3 * i + 2]));
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-            throw error(source_location{name}, "expected finite vertex coordinates, found NaN or inf in vertex " +
-                                                   std::to_string(i + 1) + "; fix the file");
-        m.positions.push_back(p);
-    }
-    for (std::size_t i = 0; i < normal_count; ++i)
-        m.normals.emplace_back(real(attrib.normals[3 * i]), real(attrib.normals[3 * i + 1]), real(attrib.normals[3 * i + 2]));
-    for (std::size_t i = 0; i < texcoord_count; ++i)
-        m.texcoords.emplace_back(real(attrib.texcoords[2 * i]), real(attrib.texcoords[2 * i + 1]));
-
-    for (const tinyobj::material_t& source : reader.GetMaterials()) {
-        material mat;
-        mat.name = source.name;
-        mat.ka = detail::to_color(source.ambient);
-        mat.kd = detail::to_color(source.diffuse);
-        mat.ks = detail::to_color(source.specular);
-        mat.p = source.shininess > 0 ? real(source.shininess) : real(1);
-        // MTL illumination models 3 and 5 are "reflection on": Ks is the mirror colour.
-        mat.km = (source.illum == 3 || source.illum == 5) ? mat.ks : color(0.0f);
+    m.positions = std::move(checked.positions);
+    for (const detail::mtl_entry& entry : mtl) {
+        material mat = entry.value;
+        if (!entry.has_ka)
+            mat.ka = mat.kd; // as in scene files
+        if (!entry.has_ns)
+            mat.p = material{}.p;
+        mat.km = (entry.illum == 3 || entry.illum == 5) ? mat.ks : color(0.0f); // reflection on
         result.materials.push_back(mat);
     }
 
-    bool all_have_normals = normal_count > 0;
-    bool all_have_texcoords = texcoord_count > 0;
-    bool any_material = false;
-    std::vector<int> face_materials;
+    const std::size_t normal_count = attrib.normals.size() / 3;
+    const std::size_t texcoord_count = attrib.texcoords.size() / 2;
+    const std::size_t vertex_count = m.positions.size();
+    bool any_normal = false, any_texcoord = false, any_material = false;
     std::vector<index3> normal_indices, texcoord_indices;
-    std::size_t face_number = 0;
-    for (const tinyobj::shape_t& group : reader.GetShapes()) {
+    std::vector<int> face_materials;
+    for (const tinyobj::shape_t& group : groups) {
         std::size_t offset = 0;
-        for (std::size_t f = 0; f < group.mesh.num_face_vertices.size(); ++f, ++face_number) {
+        for (std::size_t f = 0; f < group.mesh.num_face_vertices.size(); ++f) {
             const std::size_t corners = group.mesh.num_face_vertices[f];
-            if (corners != 3) {
-                const source_location where{name, detail::obj_face_line(path, face_number)};
-                throw parse_error(where, "a face of at least 3 vertices", "one of " + std::to_string(corners),
-                                  "an OBJ face 'f' lists three or more vertex indices");
-            }
-            index3 position{}, normal{}, texcoord{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                const tinyobj::index_t& index = group.mesh.indices[offset + k];
-                if (index.vertex_index < 0 || std::size_t(index.vertex_index) >= vertex_count) {
-                    const source_location where{name, detail::obj_face_line(path, face_number)};
-                    throw parse_error(where, "a vertex index between 1 and " + std::to_string(vertex_count),
-                                      "an index out of range", "OBJ indices count from 1 ('v' lines above the face)");
-                }
-                position[k] = std::uint32_t(index.vertex_index);
-                if (index.normal_index < 0 || std::size_t(index.normal_index) >= normal_count)
-                    all_have_normals = false;
-                else
-                    normal[k] = std::uint32_t(index.normal_index);
-                if (index.texcoord_index < 0 || std::size_t(index.texcoord_index) >= texcoord_count)
-                    all_have_texcoords = false;
-                else
-                    texcoord[k] = std::uint32_t(index.texcoord_index);
-            }
+            const std::size_t first = offset;
             offset += corners;
+            if (corners != 3) // triangulate = true gives triangles only; anything else is dropped
+                continue;
+            index3 position{}, normal{}, texcoord{};
+            bool valid = true;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const tinyobj::index_t& index = group.mesh.indices[first + k];
+                valid = valid && index.vertex_index >= 0 && std::size_t(index.vertex_index) < vertex_count;
+                position[k] = std::uint32_t(index.vertex_index);
+                const bool has_normal = index.normal_index >= 0 && std::size_t(index.normal_index) < normal_count;
+                const bool has_texcoord =
+                    index.texcoord_index >= 0 && std::size_t(index.texcoord_index) < texcoord_count;
+                normal[k] = has_normal ? std::uint32_t(index.normal_index) : no_index;
+                texcoord[k] = has_texcoord ? std::uint32_t(index.texcoord_index) : no_index;
+            }
+            if (!valid) // cannot happen after the check above; never index out of range
+                continue;
             const vec3& a = m.positions[position[0]];
             const vec3& b = m.positions[position[1]];
             const vec3& c = m.positions[position[2]];
-            const real twice_area = glm::length(glm::cross(b - a, c - a));
-            if (!(twice_area > 0)) {
+            if (!(glm::length(glm::cross(b - a, c - a)) > 0)) {
                 ++m.dropped_degenerate;
                 continue;
             }
             m.triangles.push_back(position);
             normal_indices.push_back(normal);
             texcoord_indices.push_back(texcoord);
-            const int material_id = f < group.mesh.material_ids.size() ? group.mesh.material_ids[f] : -1;
-            face_materials.push_back(material_id >= 0 && std::size_t(material_id) < result.materials.size() ? material_id : -1);
+            any_normal = any_normal || normal[0] != no_index || normal[1] != no_index || normal[2] != no_index;
+            any_texcoord =
+                any_texcoord || texcoord[0] != no_index || texcoord[1] != no_index || texcoord[2] != no_index;
+            const int id = f < group.mesh.material_ids.size() ? group.mesh.material_ids[f] : -1;
+            face_materials.push_back(id >= 0 && std::size_t(id) < result.materials.size() ? id : -1);
             any_material = any_material || face_materials.back() >= 0;
         }
     }
-    if (all_have_normals)
+    if (any_normal) {
+        m.normals.reserve(normal_count);
+        for (std::size_t i = 0; i < normal_count; ++i)
+            m.normals.emplace_back(real(attrib.normals[3 * i]), real(attrib.normals[3 * i + 1]),
+                                   real(attrib.normals[3 * i + 2]));
         m.normal_indices = std::move(normal_indices);
-    else
-        m.normals.clear();
-    if (all_have_texcoords)
+    }
+    if (any_texcoord) {
+        m.texcoords.reserve(texcoord_count);
+        for (std::size_t i = 0; i < texcoord_count; ++i)
+            m.texcoords.emplace_back(real(attrib.texcoords[2 * i]), real(attrib.texcoords[2 * i + 1]));
         m.texcoord_indices = std::move(texcoord_indices);
-    else
-        m.texcoords.clear();
+    }
     if (any_material)
         m.face_materials = std::move(face_materials);
     return result;
+}
+
+/// One line describing a loaded OBJ file, for a program to print.
+inline std::string summary(const obj_result& loaded)
+{
+    const mesh& m = loaded.geometry;
+    std::ostringstream out;
+    out << m.source << ": " << m.triangles.size() << " triangles from " << loaded.polygons << " faces, "
+        << m.positions.size() << " vertices, " << (m.normals.empty() ? "no" : std::to_string(m.normals.size()))
+        << " normals, " << (m.texcoords.empty() ? "no" : std::to_string(m.texcoords.size()))
+        << " texture coordinates, " << loaded.materials.size() << " materials, " << m.dropped_degenerate
+        << " degenerate triangles dropped";
+    return out.str();
 }
 
 } // namespace rt

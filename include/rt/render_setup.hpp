@@ -8,10 +8,10 @@
 // stage08_output writes for the same camera and settings:
 //
 //     rt::scene s = rt::load_input("scenes/showcase.scene");
-//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::rays);
+//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
-//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::rays, rt::encoding{}));
+//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::none, rt::encoding{}));
 #pragma once
 
 #include <algorithm>
@@ -20,6 +20,8 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -29,10 +31,13 @@
 #include "camera.hpp"
 #include "encoding.hpp"
 #include "error.hpp"
+#include "hit_record.hpp"
+#include "intersect.hpp"
 #include "light.hpp"
 #include "obj_loader.hpp"
 #include "ray.hpp"
 #include "ray_image.hpp"
+#include "raytracer.hpp"
 #include "renderer.hpp"
 #include "sampler.hpp"
 #include "scene.hpp"
@@ -149,31 +154,48 @@ inline ray_source camera_rays(const camera& cam, int nx, int ny)
     return [gen](real x, real y) { return generate_ray(gen, x, y); };
 }
 
-/// What each sample computes, for scene `s`. The function refers to `s`,
-/// which must outlive it and must not change while a render runs; between
-/// renders, settings it reads at each call (max_depth, lights, materials) may
-/// change, while new shapes need a new function.
-inline radiance_function make_radiance(const scene& s, aov_kind aov)
+/// What each sample computes, for scene `s` whose accelerator (stage 04) is
+/// `accel`: the shaded colour of stages 05-07 (rt::ray_color) or a debug image.
+/// The function refers to `s` and `accel` (it shares ownership of `accel`;
+/// `s` must outlive it) and neither may change while a render runs; between
+/// renders, what it reads at each call (s.max_depth, lights, materials) may
+/// change, while new shapes need a new accelerator.
+inline radiance_function make_radiance(const scene& s, std::shared_ptr<const accelerator> accel, aov_kind aov)
 {
+    const real far = std::numeric_limits<real>::infinity();
     switch (aov) {
     case aov_kind::rays:
         return [](const ray& r, sample_context&) { return direction_to_color(r.direction); };
     case aov_kind::depth:
+        // the distance along the ray, t |d|; 0 where the ray misses
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color(float(hit.t * glm::length(r.direction))) : color(0.0f);
+        };
     case aov_kind::normal:
+        // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color((hit.normal + vec3(1)) * real(0.5)) : color(0.0f);
+        };
     case aov_kind::position:
-        // TODO(stage 04): intersect the scene (the BVH of stage 04) and return
-        // the hit's distance t, its unit normal (n + 1)/2 or its position.
-        throw error("option --aov: depth, normal and position need the scene intersection of stage 04, "
-                    "which is not connected to this command yet; use --aov rays");
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color(hit.point) : color(0.0f);
+        };
     case aov_kind::none: break;
     }
-    // TODO(shading): the integrator of stages 05-07 goes here: trace the ray
-    // into `s` (s.max_depth mirror bounces, shadows, lights) and return its
-    // radiance; sample_context::rng for random choices and ctx.rays += n for
-    // the secondary rays it traces.
-    (void)s;
-    throw error("the shaded image needs stages 05-07, which are not connected to this command yet; "
-                "use --aov rays or --pattern zoneplate");
+    const scene* shaded = &s;
+    return [accel, shaded](const ray& r, sample_context&) { return ray_color(*shaded, *accel, r); };
+}
+
+/// The same, building the accelerator of `s` (except for the rays image, which needs none).
+inline radiance_function make_radiance(const scene& s, aov_kind aov)
+{
+    if (aov == aov_kind::rays)
+        return make_radiance(s, nullptr, aov);
+    // built once, shared by every worker thread (closest_hit and any_hit are const)
+    return make_radiance(s, std::make_shared<const accelerator>(s), aov);
 }
 
 /// How an image of `aov` is stored: the shaded image through `shaded`; an AOV

@@ -56,13 +56,13 @@ struct grid_shape {
 
 inline grid_shape grid_shape_for(int spp)
 {
-    grid_shape shape;
+    grid_shape grid;
     if (spp <= 1)
-        return shape;
-    while (shape.columns * shape.columns < spp) // ceil(sqrt(spp)) in exact integers
-        ++shape.columns;
-    shape.rows = (spp + shape.columns - 1) / shape.columns;
-    return shape;
+        return grid;
+    while (grid.columns * grid.columns < spp) // ceil(sqrt(spp)) in exact integers
+        ++grid.columns;
+    grid.rows = (spp + grid.columns - 1) / grid.columns;
+    return grid;
 }
 
 /// The number of samples a pixel really gets when `spp` are asked for.
@@ -73,8 +73,8 @@ inline int effective_samples(sampler_kind kind, int spp)
     case sampler_kind::center: return 1;
     case sampler_kind::grid:
     case sampler_kind::jittered: {
-        const grid_shape shape = grid_shape_for(spp);
-        return shape.columns * shape.rows;
+        const grid_shape grid = grid_shape_for(spp);
+        return grid.columns * grid.rows;
     }
     case sampler_kind::random:
     case sampler_kind::halton: break;
@@ -147,14 +147,14 @@ inline void pixel_samples(sampler_kind kind, int spp, std::uint64_t seed, std::u
         return;
     case sampler_kind::grid:
     case sampler_kind::jittered: {
-        const grid_shape shape = grid_shape_for(spp);
+        const grid_shape grid = grid_shape_for(spp);
         const bool jitter = kind == sampler_kind::jittered;
-        for (int b = 0; b < shape.rows; ++b)
-            for (int a = 0; a < shape.columns; ++a) {
+        for (int b = 0; b < grid.rows; ++b)
+            for (int a = 0; a < grid.columns; ++a) {
                 const double u = jitter ? double(rng.next_float()) : 0.5;
                 const double v = jitter ? double(rng.next_float()) : 0.5;
-                offsets.emplace_back(detail::below_one((a + u) / shape.columns),
-                                     detail::below_one((b + v) / shape.rows));
+                offsets.emplace_back(detail::below_one((a + u) / grid.columns),
+                                     detail::below_one((b + v) / grid.rows));
             }
         return;
     }

@@ -1,6 +1,53 @@
-// triangle.hpp - a single triangle with corners a, b, c (stage 04).
+// triangle.hpp - a triangle with corners a, b, c and two ways to intersect a ray with it (stage 04).
+//
+// Both methods find t and the barycentric coordinates (b0, b1, b2) of the hit,
+// b0 + b1 + b2 = 1, with the hit point b0 a + b1 b + b2 c. Both are two-sided:
+// a ray hits the front (seen counter-clockwise) and the back alike, and
+// front_face says which one it hit.
+//
+// 1. Moller-Trumbore (Moller, Trumbore, "Fast, Minimum Storage Ray/Triangle
+//    Intersection", Journal of Graphics Tools 2(1), 1997, sec. 2): with the
+//    edges e1 = b - a, e2 = c - a and Cramer's rule on p + t d = a + u e1 + v e2,
+//        P = d x e2,  det = e1 . P,  T = p - a,  Q = T x e1,
+//        u = (T . P) / det,  v = (d . Q) / det,  t = (e2 . Q) / det,
+//    a hit when u >= 0, v >= 0, u + v <= 1 (b1 = u, b2 = v). This is the
+//    stage-04 exercise. Each triangle tests its own u and v, so the two
+//    triangles that share an edge compute that edge's test differently; a ray
+//    aimed exactly at the edge can fail both and slip through the mesh (the
+//    stage-04 tests count such leaks, docs/stages/04-triangle.md shows them).
+//
+// 2. Watertight (Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection",
+//    Journal of Computer Graphics Techniques 2(1), 2013, sec. 3 and fig. 4 to 6):
+//    translate the corners to the ray origin, permute the axes so that the
+//    largest component of d is z, shear so that the ray becomes the +z axis:
+//        kz = argmax |d_k|, kx = kz + 1, ky = kx + 1 (mod 3), swap kx, ky if d_kz < 0
+//        Sx = d_kx / d_kz,  Sy = d_ky / d_kz,  Sz = 1 / d_kz
+//        A = a - p, Ax = A_kx - Sx A_kz, Ay = A_ky - Sy A_kz (and B, C alike)
+//    then the 2D edge functions of the sheared triangle at the origin,
+//        U = Cx By - Cy Bx,  V = Ax Cy - Ay Cx,  W = Bx Ay - By Ax,
+//    are the scaled barycentrics of a, b, c. The ray hits when U, V, W do not
+//    have mixed signs; det = U + V + W, T = U Sz A_kz + V Sz B_kz + W Sz C_kz,
+//    t = T / det. A shared edge is computed from the same two sheared corners
+//    in both of its triangles, so the two results are exact negatives of each
+//    other and no ray can pass between them; when an edge function rounds to
+//    exactly 0 it is recomputed in double (the paper's fallback), so a ray
+//    through an edge or a vertex is decided by the sign of the exact value.
+//    This is the library's default (hit_triangle, meshes, the BVH).
+//
+//    The watertight test also refuses a t that is not certainly positive given
+//    the rounding error of the computation (Physically Based Rendering, 3rd
+//    ed., sec. 3.9.6): a ray that starts on the triangle, such as a ray spawned
+//    from a hit on it, cannot hit it again at a tiny t.
 #pragma once
 
+#include <cmath>
+#include <type_traits>
+
+#include <glm/common.hpp>
+
+#include "hit_record.hpp"
+#include "ray.hpp"
+#include "rounding.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -9,5 +56,202 @@ struct triangle {
     vec3 a{0}, b{0}, c{0};  ///< corners, counter-clockwise seen from the front
     int material = -1;      ///< index into scene::materials; -1: the default material
 };
+
+/// A ray-triangle hit before a hit record is filled: the ray parameter and the
+/// barycentric coordinates of the corners a, b, c (b0 + b1 + b2 = 1).
+struct triangle_hit {
+    real t = 0;
+    real b0 = 0, b1 = 0, b2 = 0;
+};
+
+/// Fills `rec` for a hit on the triangle a, b, c described by `h`:
+///  - point = b0 a + b1 b + b2 c, and point_error, the bound on its rounding
+///    error gamma_7 (|b0 a| + |b1 b| + |b2 c|) (PBR 3rd ed., sec. 3.9.4);
+///  - the geometric normal n = (b - a) x (c - a) / |...| (the front is the side
+///    the corners turn counter-clockwise on); front_face = d . n < 0; the
+///    stored normals are turned to face the incoming ray;
+///  - t, b1, b2, primitive 0. The material is left to the caller.
+inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, const ray& r,
+                                 const triangle_hit& h, hit_record& rec)
+{
+    rec.t = h.t;
+    rec.point = h.b0 * a + h.b1 * b + h.b2 * c;
+    rec.point_error = gamma_n(7) * (glm::abs(h.b0 * a) + glm::abs(h.b1 * b) + glm::abs(h.b2 * c));
+    const vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    rec.front_face = glm::dot(r.direction, n) < 0;
+    rec.geometric_normal = rec.front_face ? n : -n;
+    rec.normal = rec.geometric_normal;
+    rec.b1 = h.b1;
+    rec.b2 = h.b2;
+    rec.primitive = 0;
+}
+
+/// Moller-Trumbore, as the 1997 paper gives it (see the top of this file):
+/// the hit in [tmin, tmax], two-sided, with the record filled by
+/// fill_triangle_record. Kept for teaching and for comparison; it leaks
+/// through shared edges, which the watertight test does not.
+inline bool hit_triangle_moller_trumbore(const triangle& tri, const ray& r, real tmin, real tmax,
+                                         hit_record& rec)
+{
+    // RT_EXERCISE_BEGIN(stage04: Moller-Trumbore ray-triangle intersection)
+    const vec3 e1 = tri.b - tri.a;
+    const vec3 e2 = tri.c - tri.a;
+    const vec3 P = glm::cross(r.direction, e2);
+    const real det = glm::dot(e1, P);
+    if (det == 0) // the ray is parallel to the triangle's plane
+        return false;
+    const real inv_det = 1 / det;
+    const vec3 T = r.origin - tri.a;
+    const real u = glm::dot(T, P) * inv_det;
+    if (u < 0 || u > 1)
+        return false;
+    const vec3 Q = glm::cross(T, e1);
+    const real v = glm::dot(r.direction, Q) * inv_det;
+    if (v < 0 || u + v > 1)
+        return false;
+    const real t = glm::dot(e2, Q) * inv_det;
+    if (t < tmin || t > tmax)
+        return false;
+    fill_triangle_record(tri.a, tri.b, tri.c, r, triangle_hit{t, 1 - u - v, u, v}, rec);
+    rec.material = tri.material;
+    return true;
+    // RT_EXERCISE_END
+}
+
+/// What the watertight test computes once per ray (Woop et al. 2013, sec. 3):
+/// the origin p, the axis permutation kx, ky, kz and the shear Sx, Sy, Sz.
+/// Precondition: the direction is not the zero vector.
+struct watertight_ray {
+    real p[3] = {0, 0, 0};
+    int kx = 0, ky = 1, kz = 2;
+    real Sx = 0, Sy = 0, Sz = 1;
+};
+
+inline watertight_ray make_watertight_ray(const ray& r)
+{
+    watertight_ray w;
+    const vec3& d = r.direction;
+    w.p[0] = r.origin.x;
+    w.p[1] = r.origin.y;
+    w.p[2] = r.origin.z;
+    const vec3 m = glm::abs(d);
+    w.kz = m.x >= m.y ? (m.x >= m.z ? 0 : 2) : (m.y >= m.z ? 1 : 2);
+    w.kx = w.kz == 2 ? 0 : w.kz + 1;
+    w.ky = w.kx == 2 ? 0 : w.kx + 1;
+    if (d[w.kz] < 0) { // keep the winding, so front_face stays meaningful
+        const int swap = w.kx;
+        w.kx = w.ky;
+        w.ky = swap;
+    }
+    w.Sx = d[w.kx] / d[w.kz];
+    w.Sy = d[w.ky] / d[w.kz];
+    w.Sz = 1 / d[w.kz];
+    return w;
+}
+
+namespace detail {
+
+/// The largest of |x|, |y|, |z|.
+inline real max_abs3(real x, real y, real z)
+{
+    x = std::fabs(x);
+    y = std::fabs(y);
+    z = std::fabs(z);
+    const real m = x > y ? x : y;
+    return m > z ? m : z;
+}
+
+/// PBR 3rd ed., sec. 3.9.6: a bound on the rounding error of the t computed by
+/// the watertight test, so that t <= bound means "possibly at or behind the
+/// origin". x, y, z are the corners translated to the ray origin and permuted;
+/// X, Y the sheared coordinates (X = x - Sx z, with |Sx|, |Sy| <= 1 because kz is
+/// the largest axis of d); Z the scaled ones (Sz z); U, V, W the edge functions.
+inline real watertight_t_error(const real x[3], const real y[3], const real z[3], const real X[3],
+                               const real Y[3], const real Z[3], real U, real V, real W, real det)
+{
+    const real max_x = max_abs3(x[0], x[1], x[2]);
+    const real max_y = max_abs3(y[0], y[1], y[2]);
+    const real max_z = max_abs3(z[0], z[1], z[2]);
+    const real max_X = max_abs3(X[0], X[1], X[2]);
+    const real max_Y = max_abs3(Y[0], Y[1], Y[2]);
+    const real max_Z = max_abs3(Z[0], Z[1], Z[2]);
+    const real max_E = max_abs3(U, V, W);
+    const real delta_x = gamma_n(5) * (max_x + max_z);
+    const real delta_y = gamma_n(5) * (max_y + max_z);
+    const real delta_z = gamma_n(3) * max_Z;
+    const real delta_e = 2 * (gamma_n(2) * max_X * max_Y + delta_y * max_X + delta_x * max_Y);
+    return 3 * (gamma_n(3) * max_E * max_Z + delta_e * max_Z + delta_z * max_E) * std::fabs(1 / det);
+}
+
+} // namespace detail
+
+/// The watertight test (see the top of this file) of the ray `w` against the
+/// triangle whose corners a, b, c are the nine numbers v[0..8] (a.x a.y a.z
+/// b.x ...). On a hit with t in [tmin, tmax] fills `hit` and returns true.
+/// The result depends only on the ray and the corners, never on the order in
+/// which triangles are tested: the flat list and the BVH agree exactly.
+inline bool intersect_watertight(const watertight_ray& w, const real* v, real tmin, real tmax, triangle_hit& hit)
+{
+    const int kx = w.kx, ky = w.ky, kz = w.kz;
+    // A, B, C translated to the ray origin, permuted and sheared
+    const real Az = v[kz] - w.p[kz], Bz = v[3 + kz] - w.p[kz], Cz = v[6 + kz] - w.p[kz];
+    const real Ax = (v[kx] - w.p[kx]) - w.Sx * Az;
+    const real Ay = (v[ky] - w.p[ky]) - w.Sy * Az;
+    const real Bx = (v[3 + kx] - w.p[kx]) - w.Sx * Bz;
+    const real By = (v[3 + ky] - w.p[ky]) - w.Sy * Bz;
+    const real Cx = (v[6 + kx] - w.p[kx]) - w.Sx * Cz;
+    const real Cy = (v[6 + ky] - w.p[ky]) - w.Sy * Cz;
+
+    // scaled barycentric coordinates: the edge functions
+    real U = Cx * By - Cy * Bx;
+    real V = Ax * Cy - Ay * Cx;
+    real W = Bx * Ay - By * Ax;
+    if constexpr (std::is_same_v<real, float>) {
+        if (U == 0 || V == 0 || W == 0) { // on an edge in float: decide in double (the products are exact there)
+            U = real(double(Cx) * double(By) - double(Cy) * double(Bx));
+            V = real(double(Ax) * double(Cy) - double(Ay) * double(Cx));
+            W = real(double(Bx) * double(Ay) - double(By) * double(Ax));
+        }
+    }
+    if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
+        return false;
+    const real det = U + V + W;
+    if (det == 0) // the ray lies in the triangle's plane, or the triangle has no area
+        return false;
+
+    const real T = U * (w.Sz * Az) + V * (w.Sz * Bz) + W * (w.Sz * Cz);
+    const real inv_det = 1 / det;
+    const real t = T * inv_det;
+    if (!(t >= tmin && t <= tmax)) // also refuses NaN
+        return false;
+    { // the conservative check of PBR 3rd ed., sec. 3.9.6 (see watertight_t_error)
+        const real x[3] = {v[kx] - w.p[kx], v[3 + kx] - w.p[kx], v[6 + kx] - w.p[kx]};
+        const real y[3] = {v[ky] - w.p[ky], v[3 + ky] - w.p[ky], v[6 + ky] - w.p[ky]};
+        const real z[3] = {Az, Bz, Cz};
+        const real X[3] = {Ax, Bx, Cx};
+        const real Y[3] = {Ay, By, Cy};
+        const real Z[3] = {w.Sz * Az, w.Sz * Bz, w.Sz * Cz};
+        if (t <= detail::watertight_t_error(x, y, z, X, Y, Z, U, V, W, det))
+            return false;
+    }
+    hit.t = t;
+    hit.b0 = U * inv_det;
+    hit.b1 = V * inv_det;
+    hit.b2 = W * inv_det;
+    return true;
+}
+
+/// The library's default ray-triangle intersection: the watertight test, with
+/// the record filled by fill_triangle_record and the triangle's material.
+inline bool hit_triangle(const triangle& tri, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    const real corners[9] = {tri.a.x, tri.a.y, tri.a.z, tri.b.x, tri.b.y, tri.b.z, tri.c.x, tri.c.y, tri.c.z};
+    triangle_hit h;
+    if (!intersect_watertight(make_watertight_ray(r), corners, tmin, tmax, h))
+        return false;
+    fill_triangle_record(tri.a, tri.b, tri.c, r, h, rec);
+    rec.material = tri.material;
+    return true;
+}
 
 } // namespace rt

@@ -6,10 +6,9 @@
 //     stage08_output ../shared/meshes/stanford-bunny.obj -o bunny.pfm --aov rays
 //     stage08_output --pattern zoneplate --width 256 --height 256 --sampler jittered --spp 16 -o zp.png
 //
-// The shaded image needs stages 04-07 (scene intersection and shading), which
-// are connected at the TODO(shading) hook of rt::make_radiance
-// (include/rt/render_setup.hpp, shared with the viewer); until then the
-// command renders the `rays` AOV and the analytic test patterns.
+// Each sample's colour is rt::ray_color (stages 05-07) over the scene's
+// rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
+// include/rt/render_setup.hpp, shared with the viewer (stages/viewer).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

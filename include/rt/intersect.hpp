@@ -1,0 +1,252 @@
+// intersect.hpp - the nearest hit of a ray in a whole scene (stage 04; every later stage calls it).
+//
+// The course's group: "loop over all objects, keep the closest hit". That loop
+// is closest_hit_list, the stage-04 exercise, written for reading. The library
+// (shading, shadows, reflections) uses rt::accelerator instead: built once from
+// a scene, as a flat list of packed primitives or as a BVH (bvh.hpp), it
+// returns exactly the same hits faster:
+//
+//     rt::accelerator world(scene);                   // auto: BVH unless the scene is tiny
+//     rt::hit_record rec;
+//     if (world.closest_hit(r, 0, rt::infinity, rec)) ...  // rec.shape, rec.primitive, rec.material
+//     if (world.any_hit(shadow_ray, 0, distance)) ...     // something blocks the light
+//
+// Closest means: the smallest t in [tmin, tmax]; at an equal t, the later
+// primitive in scene order (shapes in file order, a mesh's triangles in its
+// order), which is what the list loop does when it passes the closest t so far
+// as tmax. The list, the flat accelerator and the BVH all follow this rule and
+// all use the robust methods (rt::hit_sphere, the watertight triangle test), so
+// they agree hit for hit.
+//
+// Every hit record is complete: t, point and its rounding error (for
+// spawn_ray), geometric and shading normals facing the ray, front_face,
+// material, shape, primitive, barycentrics. A sphere's hit point is moved onto
+// the sphere, R (p - c)/|p - c| + c, whose error is then bounded (PBR 3rd ed.,
+// sec. 3.9.4: gamma_5 |p - c| for the reprojection, and one rounding for the
+// sum with c).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/common.hpp>
+
+#include "bvh.hpp"
+#include "error.hpp"
+#include "hit_record.hpp"
+#include "mesh.hpp"
+#include "ray.hpp"
+#include "rounding.hpp"
+#include "scene.hpp"
+#include "sphere.hpp"
+#include "triangle.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+/// +inf as rt::real: the tmax of a ray that may go on forever.
+constexpr real infinity = std::numeric_limits<real>::infinity();
+
+/// Moves a sphere hit point onto the sphere and bounds its error (see the top
+/// of this file); t and the normals are left as hit_sphere computed them.
+inline void refine_sphere_hit(const sphere& s, hit_record& rec)
+{
+    const vec3 local = rec.point - s.center;
+    const real distance = glm::length(local);
+    if (!(distance > 0))
+        return;
+    const vec3 on_sphere = local * (s.radius / distance);
+    rec.point = s.center + on_sphere;
+    rec.point_error = gamma_n(5) * glm::abs(on_sphere) + gamma_n(1) * glm::abs(rec.point);
+}
+
+/// The closest hit of one shape in [tmin, tmax], by the library's robust
+/// methods (rt::hit_sphere, the watertight test for triangles and meshes).
+/// rec.shape is left to the caller.
+inline bool hit_shape(const shape& item, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    if (const sphere* ball = std::get_if<sphere>(&item)) {
+        if (!hit_sphere(*ball, r, tmin, tmax, rec))
+            return false;
+        refine_sphere_hit(*ball, rec);
+        return true;
+    }
+    if (const triangle* tri = std::get_if<triangle>(&item))
+        return hit_triangle(*tri, r, tmin, tmax, rec);
+    return hit_mesh(std::get<mesh>(item), r, tmin, tmax, rec);
+}
+
+/// The course's group: loop over all the shapes of the scene and keep the
+/// closest hit in [tmin, tmax]; rec.shape is the index of the shape hit.
+inline bool closest_hit_list(const scene& s, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    // RT_EXERCISE_BEGIN(stage04: closest hit over the list of shapes)
+    bool hit_anything = false;
+    real closest = tmax;
+    hit_record candidate;
+    for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+        if (hit_shape(s.shapes[i], r, tmin, closest, candidate)) {
+            hit_anything = true;
+            closest = candidate.t;
+            rec = candidate;
+            rec.shape = std::uint32_t(i);
+        }
+    }
+    return hit_anything;
+    // RT_EXERCISE_END
+}
+
+/// Whether any shape of the scene is hit in [tmin, tmax] (the list, for shadow rays).
+inline bool any_hit_list(const scene& s, const ray& r, real tmin, real tmax)
+{
+    hit_record unused;
+    for (const shape& item : s.shapes)
+        if (hit_shape(item, r, tmin, tmax, unused))
+            return true;
+    return false;
+}
+
+/// How an accelerator searches the scene.
+enum class accelerator_kind {
+    flat,      ///< every primitive, in order (packed for speed)
+    bvh,       ///< the bounding volume hierarchy of bvh.hpp
+    automatic  ///< "auto": flat below flat_list_crossover primitives, else bvh
+};
+
+/// Below this many primitives the flat list is faster than the BVH; measured
+/// with `stage04_triangle --crossover` (docs/stages/04-triangle.md).
+constexpr std::size_t flat_list_crossover = 8;
+
+inline const char* to_string(accelerator_kind kind)
+{
+    switch (kind) {
+    case accelerator_kind::flat: return "flat";
+    case accelerator_kind::bvh: return "bvh";
+    default: return "auto";
+    }
+}
+
+/// "flat", "bvh" or "auto"; anything else is an rt::error.
+inline accelerator_kind parse_accelerator_kind(const std::string& word)
+{
+    if (word == "flat")
+        return accelerator_kind::flat;
+    if (word == "bvh")
+        return accelerator_kind::bvh;
+    if (word == "auto")
+        return accelerator_kind::automatic;
+    throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
+}
+
+/// Which shape, and which triangle inside a mesh, a packed primitive came from.
+struct primitive_ref {
+    std::uint32_t shape = 0;
+    std::uint32_t primitive = 0;
+};
+
+/// The scene-level intersection: built once from a scene, then queried by
+/// every ray. The scene must outlive the accelerator and must not change while
+/// it is used. The queries are const and safe to call from many threads.
+class accelerator {
+public:
+    accelerator() = default;
+
+    explicit accelerator(const scene& s, accelerator_kind kind = accelerator_kind::automatic,
+                         const bvh_options& options = {})
+        : scene_(&s)
+    {
+        std::vector<packed_primitive> prims;
+        for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+            const shape& item = s.shapes[i];
+            if (const sphere* ball = std::get_if<sphere>(&item)) {
+                prims.push_back(pack_sphere(*ball, next_id(i, 0)));
+            } else if (const triangle* tri = std::get_if<triangle>(&item)) {
+                prims.push_back(pack_triangle(tri->a, tri->b, tri->c, next_id(i, 0)));
+            } else {
+                const mesh& m = std::get<mesh>(item);
+                for (std::size_t k = 0; k < m.triangles.size(); ++k) {
+                    const index3& face = m.triangles[k];
+                    prims.push_back(pack_triangle(m.positions[face[0]], m.positions[face[1]],
+                                                  m.positions[face[2]], next_id(i, k)));
+                }
+            }
+        }
+        if (kind == accelerator_kind::automatic)
+            kind = prims.size() < flat_list_crossover ? accelerator_kind::flat : accelerator_kind::bvh;
+        kind_ = kind;
+        if (kind_ == accelerator_kind::flat)
+            flat_ = std::move(prims);
+        else
+            tree_ = bvh(std::move(prims), options);
+    }
+
+    /// The closest hit in [tmin, tmax] (see the top of this file), with every
+    /// field of `rec` filled. Precondition: r.direction is not zero.
+    bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
+    {
+        primitive_hit h;
+        const bool found = kind_ == accelerator_kind::flat ? closest_flat(flat_, r, tmin, tmax, h)
+                                                           : tree_.closest(r, tmin, tmax, h);
+        if (!found)
+            return false;
+        complete(r, tmin, tmax, h, rec);
+        return true;
+    }
+
+    /// Whether anything is hit in [tmin, tmax]; cheaper than closest_hit
+    /// because it stops at the first hit (shadow rays).
+    bool any_hit(const ray& r, real tmin, real tmax) const
+    {
+        return kind_ == accelerator_kind::flat ? any_flat(flat_, r, tmin, tmax) : tree_.any(r, tmin, tmax);
+    }
+
+    /// flat or bvh (automatic is resolved when the accelerator is built).
+    accelerator_kind kind() const { return kind_; }
+    std::size_t primitive_count() const { return refs_.size(); }
+    /// The BVH's statistics (all zero for a flat accelerator).
+    const bvh_stats& stats() const { return tree_.stats(); }
+    const bvh& tree() const { return tree_; }
+    const primitive_ref& reference(std::uint32_t id) const { return refs_[id]; }
+
+private:
+    std::uint32_t next_id(std::size_t shape_index, std::size_t primitive)
+    {
+        if (refs_.size() >= std::size_t(sphere_flag - 1))
+            throw error("expected at most 2^31 - 1 primitives in a scene, found more; split the scene");
+        refs_.push_back(primitive_ref{std::uint32_t(shape_index), std::uint32_t(primitive)});
+        return std::uint32_t(refs_.size() - 1);
+    }
+
+    void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
+    {
+        const primitive_ref& ref = refs_[h.id];
+        const shape& item = scene_->shapes[ref.shape];
+        if (const sphere* ball = std::get_if<sphere>(&item)) {
+            hit_sphere(*ball, r, tmin, tmax, rec); // the same call as in the search: the same root
+            refine_sphere_hit(*ball, rec);
+        } else {
+            // the corners as packed (the same numbers as in the shape)
+            const real* v = h.source->v;
+            fill_triangle_record(vec3(v[0], v[1], v[2]), vec3(v[3], v[4], v[5]), vec3(v[6], v[7], v[8]), r,
+                                 triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
+            if (const triangle* tri = std::get_if<triangle>(&item))
+                rec.material = tri->material;
+            else
+                complete_mesh_hit(std::get<mesh>(item), ref.primitive, rec);
+        }
+        rec.shape = ref.shape;
+        rec.primitive = ref.primitive;
+    }
+
+    const scene* scene_ = nullptr;
+    accelerator_kind kind_ = accelerator_kind::flat;
+    std::vector<primitive_ref> refs_;
+    std::vector<packed_primitive> flat_;
+    bvh tree_;
+};
+
+} // namespace rt

@@ -1,0 +1,43 @@
+// rounding.hpp - bounds on floating-point rounding error (stage 04 on).
+//
+// IEEE 754 rounds every +, -, *, / and sqrt correctly: the computed result is
+// the exact result times (1 + e) with |e| <= u, the unit roundoff (half the
+// machine epsilon: 2^-24 in float, 2^-53 in double). A chain of n such
+// operations stays within a factor (1 + e)^n, and
+//     (1 - u)^n >= 1 - gamma_n,  (1 + u)^n <= 1 + gamma_n,  gamma_n = n u / (1 - n u)
+// (Physically Based Rendering, 3rd ed., Pharr, Jakob, Humphreys, sec. 3.9.1,
+// eq. 3.8; the bound is Higham's, "Accuracy and Stability of Numerical
+// Algorithms", 2nd ed., lemma 3.1). The robust methods of rt (the BVH slab
+// test, the triangle distance check, the offset of spawned rays) use these
+// bounds instead of an "epsilon" picked by hand.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "config.hpp"
+
+namespace rt {
+
+/// u: the largest relative error of one correctly rounded operation.
+constexpr real unit_roundoff = std::numeric_limits<real>::epsilon() / 2;
+
+/// gamma_n = n u / (1 - n u): the relative error bound of n chained operations.
+constexpr real gamma_n(int n)
+{
+    return (real(n) * unit_roundoff) / (1 - real(n) * unit_roundoff);
+}
+
+/// The next representable value above x (towards +inf).
+inline real next_up(real x)
+{
+    return std::nextafter(x, std::numeric_limits<real>::infinity());
+}
+
+/// The next representable value below x (towards -inf).
+inline real next_down(real x)
+{
+    return std::nextafter(x, -std::numeric_limits<real>::infinity());
+}
+
+} // namespace rt

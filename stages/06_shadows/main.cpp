@@ -1,0 +1,71 @@
+// Stage 06 - shadows: Blinn-Phong with a shadow ray to each light
+// (include/rt/shadows.hpp), started with the robust offset or, for comparison,
+// the textbook's fixed epsilon.
+//
+//     stage06_shadows scenes/shadows.scene -o shadows.png [--offset robust|fixed] [--epsilon E]
+#include <iostream>
+#include <limits>
+#include <string>
+
+#include <rt/shading.hpp>
+#include <rt/shadows.hpp>
+
+#include "shaded_stage.hpp"
+
+int main(int argc, char** argv)
+{
+    return stage::run("stage06_shadows", [&] {
+        stage::arguments args(argc, argv);
+        std::string scene_path, output = "shadows.png", offset = "robust";
+        rt::real epsilon = rt::real(1e-4);
+        while (!args.done()) {
+            const std::string arg = args.take();
+            if (arg == "--help" || arg == "-h") {
+                std::cout << "usage: stage06_shadows SCENE [-o OUTPUT] [--offset robust|fixed] [--epsilon E]\n"
+                             "Renders SCENE with Blinn-Phong shading and shadow rays.\n"
+                             "  -o OUTPUT        .png, .ppm or .pfm (default shadows.png)\n"
+                             "  --offset robust  start shadow rays with the offset of Ray Tracing Gems ch. 6 (default)\n"
+                             "  --offset fixed   start them at the hit point and skip hits closer than E\n"
+                             "  --epsilon E      the fixed epsilon (default 1e-4)\n";
+                return 0;
+            } else if (arg == "-o") {
+                output = args.value_of("-o");
+            } else if (arg == "--offset") {
+                offset = args.value_of("--offset");
+                if (offset != "robust" && offset != "fixed")
+                    throw rt::error("--offset: expected robust or fixed, found '" + offset + "'");
+            } else if (arg == "--epsilon") {
+                const std::string text = args.value_of("--epsilon");
+                try {
+                    std::size_t used = 0;
+                    epsilon = rt::real(std::stod(text, &used));
+                    if (used != text.size() || !(epsilon >= 0))
+                        throw std::invalid_argument(text);
+                } catch (const std::exception&) {
+                    throw rt::error("--epsilon: expected a non-negative number, found '" + text + "'");
+                }
+            } else if (!arg.empty() && arg[0] == '-') {
+                throw rt::error("expected an option (-o, --offset, --epsilon, --help), found '" + arg + "'; see --help");
+            } else if (scene_path.empty()) {
+                scene_path = arg;
+            } else {
+                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
+            }
+        }
+        if (scene_path.empty())
+            throw rt::error("expected a scene file, found none; see --help");
+        const bool robust = offset == "robust";
+        stage::render_shaded(
+            "stage06_shadows", scene_path, output,
+            [&](const rt::scene& s, const rt::accelerator& accel, const rt::ray& r) {
+                rt::hit_record hit;
+                if (!accel.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))
+                    return s.background;
+                return rt::direct_lighting(s, hit, r.direction, [&](const rt::light_sample& sample) {
+                    return robust ? rt::light_visible(accel, hit, sample)
+                                  : rt::light_visible_fixed_epsilon(accel, hit, sample, epsilon);
+                });
+            });
+        return 0;
+    });
+}

@@ -1,0 +1,135 @@
+// Stage 07 - reflections: L += km raycolor(p, r), r = d - 2 (d.n) n
+// (Fundamentals of Computer Graphics, 4th ed., sec. 4.8).
+//
+// The scenes here have no lights, only ambient light, so every colour is a
+// closed form (ka Ia, km ka Ia, a geometric series) and nothing of stage 05's
+// or 06's exercises is called. Scenes and rays are built here.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <rt/intersect.hpp>
+#include <rt/raytracer.hpp>
+#include <rt/scene.hpp>
+
+namespace {
+
+void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
+{
+    CHECK(got.r == doctest::Approx(r).epsilon(eps));
+    CHECK(got.g == doctest::Approx(g).epsilon(eps));
+    CHECK(got.b == doctest::Approx(b).epsilon(eps));
+}
+
+/// Two triangles making the square [-h, h]^2 in the plane z = z0 (normal +z).
+void add_square_z(rt::scene& s, rt::real h, rt::real z0, int material)
+{
+    rt::triangle a, b;
+    a.a = {-h, -h, z0};
+    a.b = {h, -h, z0};
+    a.c = {h, h, z0};
+    b.a = {-h, -h, z0};
+    b.b = {h, h, z0};
+    b.c = {-h, h, z0};
+    a.material = b.material = material;
+    s.shapes.emplace_back(a);
+    s.shapes.emplace_back(b);
+}
+
+rt::material ambient_material(rt::color ka, rt::color km = rt::color(0.0f))
+{
+    rt::material m;
+    m.ka = ka;
+    m.kd = rt::color(0.0f);
+    m.ks = rt::color(0.0f);
+    m.km = km;
+    return m;
+}
+
+} // namespace
+
+TEST_CASE("reflect: same length, angle in equals angle out, twice is the identity")
+{
+    const rt::vec3 n = glm::normalize(rt::vec3(1, 2, -0.5f));
+    const rt::vec3 ds[] = {{1, 0, 0}, {-0.3f, -2, 1}, {0, 0, 5}, {2, 4, -1}};
+    for (const rt::vec3& d : ds) {
+        const rt::vec3 r = rt::reflect(d, n);
+        CHECK(glm::length(r) == doctest::Approx(glm::length(d)));
+        CHECK(glm::dot(r, n) == doctest::Approx(-glm::dot(d, n)));
+        // the tangential part is kept
+        const rt::vec3 tangential_d = d - glm::dot(d, n) * n, tangential_r = r - glm::dot(r, n) * n;
+        CHECK(glm::length(tangential_d - tangential_r) < 1e-5);
+        const rt::vec3 back = rt::reflect(r, n);
+        CHECK(glm::length(back - d) < 1e-5);
+    }
+    // straight down onto a floor comes straight back up
+    const rt::vec3 up = rt::reflect({0, -3, 0}, {0, 1, 0});
+    CHECK(up.x == doctest::Approx(0));
+    CHECK(up.y == doctest::Approx(3));
+}
+
+TEST_CASE("a mirror shows km times the colour of what it reflects")
+{
+    rt::scene s;
+    s.ambient = rt::color(1.0f);
+    s.background = {0.1f, 0.2f, 0.3f};
+    s.materials.push_back(ambient_material(rt::color(0.0f), {0.5f, 0.6f, 0.7f})); // 0: a pure mirror
+    s.materials.push_back(ambient_material({0.2f, 0.4f, 0.8f}));                 // 1: a matte ball
+    add_square_z(s, 10, 0, 0);                                                   // mirror floor z = 0
+    rt::sphere ball;
+    ball.center = {0, 0, 5};
+    ball.radius = 1;
+    ball.material = 1;
+    s.shapes.emplace_back(ball);
+    const rt::accelerator accel(s);
+
+    // A ray from (4, 0, 4) to the mirror point (2, 0, 0) reflects to (0, 0, 4),
+    // the bottom of the ball: L = mirror ambient (0) + km * ka_ball * Ia.
+    const rt::ray r{rt::vec3(4, 0, 4), rt::vec3(-2, 0, -4)};
+    check_color(rt::ray_color(s, accel, r), 0.5 * 0.2, 0.6 * 0.4, 0.7 * 0.8);
+    // The ball seen directly: its own ambient colour.
+    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0, 0, 20), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
+    // A reflected ray that misses everything sees km times the background.
+    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(9, 9, 1), rt::vec3(0.1f, 0.1f, -1)}), 0.05, 0.12, 0.21);
+    // With max_depth 0 there is no reflection at all.
+    s.max_depth = 0;
+    check_color(rt::ray_color(s, accel, r), 0, 0, 0);
+}
+
+TEST_CASE("two facing mirrors: recursion stops at max_depth with a bounded geometric sum")
+{
+    // Mirrors z = 0 (facing +z) and z = 2 (facing -z), each with ambient a and
+    // mirror reflectance k. A ray along the z axis bounces forever in theory; with
+    // depth limit D it sees a (1 + k + ... + k^D) = a (1 - k^(D+1)) / (1 - k) < a / (1 - k).
+    const double a = 0.1, k = 0.9;
+    for (int D : {0, 1, 5, 20, 64}) {
+        rt::scene s;
+        s.ambient = rt::color(1.0f);
+        s.max_depth = D;
+        s.materials.push_back(ambient_material(rt::color(float(a)), rt::color(float(k))));
+        add_square_z(s, 5, 0, 0);
+        add_square_z(s, 5, 2, 0);
+        const rt::accelerator accel(s);
+        const rt::color L = rt::ray_color(s, accel, rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
+        const double expected = a * (1 - std::pow(k, D + 1)) / (1 - k);
+        CAPTURE(D);
+        check_color(L, expected, expected, expected, 1e-4);
+        CHECK(double(L.r) < a / (1 - k));
+    }
+}
+
+TEST_CASE("a mirror ball reflects the background where its reflections escape")
+{
+    rt::scene s;
+    s.background = {0.25f, 0.5f, 1.0f};
+    s.ambient = rt::color(0.0f);
+    s.materials.push_back(ambient_material(rt::color(0.0f), rt::color(0.8f)));
+    rt::sphere ball;
+    ball.material = 0;
+    s.shapes.emplace_back(ball);
+    const rt::accelerator accel(s);
+    // a ray hitting the front of the ball comes back out: 0.8 * background
+    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0.3f, 0.4f, 5), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
+    // a miss is the background itself
+    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(3, 0, 5), rt::vec3(0, 0, -1)}), 0.25, 0.5, 1.0);
+}
