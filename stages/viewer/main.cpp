@@ -703,6 +703,11 @@ int main(int argc, char** argv)
         viewer::parse_script(set.script, set.script_name); // script errors before the window opens
         rt::scene scene = stage::load_render_input(set.render);
         const sdl_session sdl;
+        // without a display SDL falls back to a driver that shows nothing: fine for a script, not for a person
+        const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
+        if ((driver == "offscreen" || driver == "dummy") && set.script.empty())
+            throw rt::error("cannot open a window: no display (SDL chose its '" + driver +
+                            "' video driver, which shows nothing); set DISPLAY, or run under xvfb-run");
         app window(set, std::move(scene));
         return window.run();
     });

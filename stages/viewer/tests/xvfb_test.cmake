@@ -11,7 +11,8 @@
 # 2. stage08_output renders those arguments to .ppm and .png.
 # 3. The screenshot equals stage08_output's .ppm byte for byte, and the saved PNG
 #    its .png; the image differs from the scene's own camera (the input did something).
-# Every step has a timeout: the viewer's own --timeout, then execute_process's.
+# Every step has a timeout: the viewer's own --timeout, coreutils' timeout around
+# it, then execute_process's.
 foreach(name VIEWER STAGE08 XVFB_RUN SCENE WORK)
   if(NOT DEFINED ${name})
     message(FATAL_ERROR "xvfb_test.cmake: expected -D${name}=..., found none")
@@ -21,12 +22,20 @@ endforeach()
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
+# the viewer stops itself after --timeout; coreutils' timeout also stops a viewer
+# that hangs (xvfb-run's own end would leave it behind)
+find_program(timeout_program timeout)
+set(guard "")
+if(timeout_program)
+  set(guard "${timeout_program}" -k 10 150)
+endif()
+
 set(size --width 96 --height 64)
 set(script "wait 2; orbit 60 -20; pan 12 -6; zoom 3; key 2; key 1; key ]; key f; key .; key =; wait; \
 screenshot shot.ppm; save saved.png; args args.txt; quit")
 execute_process(
   COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24"
-          "${VIEWER}" "${SCENE}" ${size} --spp 2 --threads 2 --timeout 120 --script "${script}"
+          ${guard} "${VIEWER}" "${SCENE}" ${size} --spp 2 --threads 2 --timeout 120 --script "${script}"
   WORKING_DIRECTORY "${WORK}"
   RESULT_VARIABLE code
   OUTPUT_VARIABLE out
