@@ -86,7 +86,7 @@ const std::string usage = std::string("usage: viewer (SCENE | MODEL.obj) [option
                           stage::render_options_usage +
                           "  -o OUTPUT             where the save key writes (.png, .ppm or .pfm; default render.png)\n"
                           "  --script TEXT|@FILE   scripted input (docs/viewer.md): orbit, pan, zoom, key, wait,\n"
-                          "                        sleep, screenshot, save, args, quit\n"
+                          "                        sleep, screenshot, title, save, args, quit\n"
                           "  --timeout SECONDS     give up (exit 1) after this long (default: never)\n"
                           "  --help                this text\n\n" +
                           controls;
@@ -467,10 +467,10 @@ private:
 
     bool view_is_current() const { return !view_changed_ && status_.generation == progressive_->generation(); }
 
-    void update_title()
+    void update_title(bool now_or_never = false)
     {
         const auto now = std::chrono::steady_clock::now();
-        if (now - titled_ < std::chrono::milliseconds(200))
+        if (!now_or_never && now - titled_ < std::chrono::milliseconds(200))
             return;
         titled_ = now;
         std::ostringstream title;
@@ -586,6 +586,10 @@ private:
                 return;
             } else if (c.name == "screenshot") {
                 screenshot(c.arguments[0]);
+            } else if (c.name == "title") {
+                update_title(true);
+                const std::string text = SDL_GetWindowTitle(window_);
+                rt::write_atomically(c.arguments[0], [&](std::ostream& out) { out << text << '\n'; });
             } else if (c.name == "save" || c.name == "args") {
                 const std::optional<viewer::completed_image> done = progressive_->completed();
                 if (!view_is_current() || !done)

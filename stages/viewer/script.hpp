@@ -9,6 +9,7 @@
 //     wait [LEVELS]     until the view is finished, or LEVELS levels are (the preview is 1)
 //     sleep MS          let MS milliseconds pass
 //     screenshot FILE   the window's pixels, read back, to FILE (.png or .ppm)
+//     title FILE        the window's title, to FILE
 //     save FILE         what the save key writes (the last finished level) to FILE
 //     args FILE         the stage08_output arguments of that image, one a line, without -o
 //     quit              close the window
@@ -45,7 +46,7 @@ inline const char* script_signature(const std::string& name)
         return "nn";
     if (name == "zoom")
         return "n";
-    if (name == "key" || name == "screenshot" || name == "save" || name == "args")
+    if (name == "key" || name == "screenshot" || name == "title" || name == "save" || name == "args")
         return "w";
     if (name == "wait")
         return "?";
@@ -96,7 +97,7 @@ inline std::vector<script_command> parse_script(const std::string& text, const s
         const char* signature = detail::script_signature(command.name);
         if (!signature)
             throw rt::parse_error(command.where,
-                                  "a command (orbit, pan, zoom, key, wait, sleep, screenshot, save, args, quit)",
+                                  "a command (orbit, pan, zoom, key, wait, sleep, screenshot, title, save, args, quit)",
                                   "'" + command.name + "'");
         const std::string kinds = signature;
         const std::size_t given = words.size() - 1;

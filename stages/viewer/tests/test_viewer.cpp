@@ -377,7 +377,7 @@ TEST_CASE("script: a bad command is one line with its place, what was expected a
         return std::string();
     };
     CHECK(error_of("wait\norbi 1 2") == "--script:2:1: expected a command (orbit, pan, zoom, key, wait, sleep, "
-                                       "screenshot, save, args, quit), found 'orbi'");
+                                       "screenshot, title, save, args, quit), found 'orbi'");
     CHECK(error_of("orbit 1") == "--script:1:7: expected 2 arguments after 'orbit', found 1");
     CHECK(error_of("quit now") == "--script:1:6: expected 0 arguments after 'quit', found 1");
     CHECK(error_of("wait 1 2") == "--script:1:8: expected 1 or 0 argument after 'wait', found 2");

@@ -6,11 +6,12 @@
 # 1. The viewer opens SCENE (96 x 64 pixels), waits for two levels, orbits, pans,
 #    zooms, switches to the normals view and back, doubles the samples per pixel,
 #    changes the filter, the max depth and the exposure, waits for the last level,
-#    reads its window back (screenshot), saves the image and writes the
-#    stage08_output arguments of that image.
+#    reads its window back (screenshot) and its title, saves the image and
+#    writes the stage08_output arguments of that image.
 # 2. stage08_output renders those arguments to .ppm and .png.
 # 3. The screenshot equals stage08_output's .ppm byte for byte, and the saved PNG
-#    its .png; the image differs from the scene's own camera (the input did something).
+#    its .png; the image differs from the scene's own camera (the input did
+#    something); the title shows the view, 4/4 spp done, the time and the rays per second.
 # Every step has a timeout: the viewer's own --timeout, coreutils' timeout around
 # it, then execute_process's.
 foreach(name VIEWER STAGE08 XVFB_RUN SCENE WORK)
@@ -32,7 +33,7 @@ endif()
 
 set(size --width 96 --height 64)
 set(script "wait 2; orbit 60 -20; pan 12 -6; zoom 3; key 2; key 1; key ]; key f; key .; key =; wait; \
-screenshot shot.ppm; save saved.png; args args.txt; quit")
+screenshot shot.ppm; title title.txt; save saved.png; args args.txt; quit")
 execute_process(
   COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24"
           ${guard} "${VIEWER}" "${SCENE}" ${size} --spp 2 --threads 2 --timeout 120 --script "${script}"
@@ -44,11 +45,19 @@ execute_process(
 if(NOT code EQUAL 0)
   message(FATAL_ERROR "expected the scripted viewer to exit with 0, found '${code}':\n${out}${err}")
 endif()
-foreach(file shot.ppm saved.png args.txt)
+foreach(file shot.ppm title.txt saved.png args.txt)
   if(NOT EXISTS "${WORK}/${file}")
     message(FATAL_ERROR "expected the viewer to write ${file}, found none:\n${out}${err}")
   endif()
 endforeach()
+
+# the title: the view, the samples per pixel (4 of 4: --spp 2 doubled), done, the time, rays per second
+file(READ "${WORK}/title.txt" title)
+string(STRIP "${title}" title)
+if(NOT title MATCHES "^rt viewer - shaded - 4/4 spp done - [0-9.]+ (s|min [0-9]+ s) - [0-9.]+ ?[kMG]?rays/s$")
+  message(FATAL_ERROR "expected the title 'rt viewer - shaded - 4/4 spp done - TIME - RATE rays/s', found '${title}'")
+endif()
+message(STATUS "title: ${title}")
 
 file(STRINGS "${WORK}/args.txt" arguments)
 list(FIND arguments "--camera" camera_at)
