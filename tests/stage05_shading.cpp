@@ -147,7 +147,7 @@ TEST_CASE("lights add: two lights give the sum of each alone")
     check_color(sum, a.r + b.r - ambient.r, a.g + b.g - ambient.g, a.b + b.b - ambient.b);
 }
 
-TEST_CASE("point lights: no falloff by default, as in the book; 1/r^2 with the option")
+TEST_CASE("point lights: no falloff by default, as in the book, 1/r^2 with the option")
 {
     rt::scene s = one_sphere_scene();
     s.lights[0].kind = rt::light_kind::point;

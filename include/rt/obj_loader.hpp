@@ -335,7 +335,7 @@ public:
             return true;
         done_ = true;
         for (const mtl_entry& entry : entries_) {
-            tinyobj::material_t m;
+            tinyobj::material_t m{}; // value-initialised: its plain fields are zero, not indeterminate
             m.name = entry.value.name;
             if (names->count(m.name) == 0) // the first material of a name wins, as in the check
                 (*names)[m.name] = int(materials->size());
