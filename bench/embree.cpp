@@ -237,6 +237,36 @@ void add_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& e
     }
 }
 
+/// Whether the ray truly meets the triangle a, b, c at 0 < t <= tmax:
+/// Moller-Trumbore (1997) in long double on the float inputs, with a margin of
+/// 1e-9 on the barycentrics so that edge ties do not count.
+bool truly_hits(const rt::ray& r, const vec3& a, const vec3& b, const vec3& c, float tmax)
+{
+    using L = long double;
+    const L o[3] = {r.origin.x, r.origin.y, r.origin.z}, d[3] = {r.direction.x, r.direction.y, r.direction.z};
+    L e1[3], e2[3], s[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = L(b[k]) - a[k];
+        e2[k] = L(c[k]) - a[k];
+        s[k] = o[k] - a[k];
+    }
+    auto cross = [](const L* x, const L* y, L* z) {
+        z[0] = x[1] * y[2] - x[2] * y[1];
+        z[1] = x[2] * y[0] - x[0] * y[2];
+        z[2] = x[0] * y[1] - x[1] * y[0];
+    };
+    auto dot = [](const L* x, const L* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    L p[3], q[3];
+    cross(d, e2, p);
+    const L det = dot(e1, p);
+    if (det == 0)
+        return false;
+    cross(s, e1, q);
+    const L u = dot(s, p) / det, v = dot(d, q) / det, t = dot(e2, q) / det;
+    const L margin = 1e-9L;
+    return u > margin && v > margin && u + v < 1 - margin && t > 0 && t <= tmax;
+}
+
 template <class Query>
 double time_set(const ray_set& set, unsigned threads, int repeats, answers& out, Query&& query)
 {
@@ -397,7 +427,8 @@ int main(int argc, char** argv)
                         }
                     // shadow rays on which the two disagree: does Embree's occluder
                     // lie on the triangle the ray starts from (self-intersection)?
-                    std::size_t embree_self = 0, embree_only = 0, rt_only = 0;
+                    std::size_t embree_self = 0, embree_coplanar = 0, real_occluder = 0, embree_only = 0, rt_only = 0;
+                    std::vector<std::string> examples; // t / scene radius of the other occluders
                     if (set.shadow && !rt_answer.empty())
                         for (std::size_t k = 0; k < set.rays.size(); ++k) {
                             const bool rt_blocked = rt_answer[k] < infinity, embree_blocked = embree_answer[k] < infinity;
@@ -411,18 +442,46 @@ int main(int argc, char** argv)
                             float t = 0;
                             unsigned triangle = 0;
                             vec3 normal;
-                            if (embree.closest_with_normal(set.rays[k], set.tmax[k], t, triangle, normal) &&
-                                triangle == set.source[k])
+                            if (!embree.closest_with_normal(set.rays[k], set.tmax[k], t, triangle, normal))
+                                continue;
+                            if (triangle == set.source[k]) {
                                 ++embree_self;
+                                continue;
+                            }
+                            // another triangle: is it in the plane of the one the ray starts on
+                            // (overlapping, coplanar geometry), and how far along the ray?
+                            const rt::mesh& g = m.geometry;
+                            auto corner = [&](unsigned tri, int c) { return g.positions[g.triangles[tri][std::size_t(c)]]; };
+                            const vec3 a = corner(set.source[k], 0);
+                            const vec3 n = glm::normalize(glm::cross(corner(set.source[k], 1) - a, corner(set.source[k], 2) - a));
+                            real off_plane = 0;
+                            for (int c = 0; c < 3; ++c)
+                                off_plane = std::max(off_plane, std::fabs(glm::dot(n, corner(triangle, c) - a)));
+                            if (off_plane <= real(1e-5) * radius) {
+                                ++embree_coplanar;
+                                continue;
+                            }
+                            // a real occluder? Moller-Trumbore in long double on the same inputs
+                            if (truly_hits(set.rays[k], corner(triangle, 0), corner(triangle, 1), corner(triangle, 2),
+                                           set.tmax[k])) {
+                                ++real_occluder;
+                                if (examples.size() < 5)
+                                    examples.push_back(std::to_string(t / float(radius)));
+                            }
                         }
                     if (embree_only + rt_only > 0) {
-                        std::cout << "  shadow mismatches: " << rt_only << " blocked for rt only, " << embree_only
-                                  << " for Embree only, of which " << embree_self
-                                  << " by the triangle the ray starts on\n";
-                        rays.note(file + " shadow mismatches (" + std::to_string(threads) + " threads)",
-                                  std::to_string(rt_only) + " blocked for rt only, " + std::to_string(embree_only) +
-                                      " for Embree only, " + std::to_string(embree_self) +
-                                      " of those by the triangle the ray starts on");
+                        std::string others;
+                        for (const std::string& e : examples)
+                            others += (others.empty() ? "" : " ") + e;
+                        const std::string text =
+                            std::to_string(rt_only) + " blocked for rt only, " + std::to_string(embree_only) +
+                            " for Embree only: " + std::to_string(embree_self) + " by the triangle the ray starts on, " +
+                            std::to_string(embree_coplanar) + " by a triangle in its plane (overlapping geometry), " +
+                            std::to_string(real_occluder) +
+                            " by a triangle the ray truly hits (long-double Moller-Trumbore)" +
+                            (others.empty() ? "" : " at t / scene radius = " + others + " ...");
+                        std::cout << "  shadow mismatches: " << text << '\n';
+                        rays.note(file + " shadow mismatches (" + std::to_string(threads) + " threads)", text);
                     }
                     const double n = double(set.rays.size());
                     const double rt_mrays = n / rt_seconds / 1e6, embree_mrays = n / embree_seconds / 1e6;
