@@ -95,7 +95,7 @@ public:
 
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : "'" + peek_word() + "'", hint);
+        return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
     }
 
     /// A finite number, at the precision of rt::real.
@@ -153,7 +153,7 @@ public:
                     throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
                                       "'" + std::string(p, slash) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
             } else if (part == 0) {
-                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + std::string(p, stop) + "'",
+                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + printable(std::string(p, stop), 24) + "'",
                                   "a corner is v, v/vt, v//vn or v/vt/vn");
             }
             if (slash == stop)
@@ -281,7 +281,7 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
         if (!known)
             return; // Ke, Ni, d, Tr, maps ...: not used by rt
         if (entries.empty())
-            throw parse_error(keyword_at, "'newmtl name' before '" + keyword + "'", "'" + keyword + "' first",
+            throw parse_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
                               "every material starts with newmtl");
         mtl_entry& entry = entries.back();
         if (colour) {
@@ -501,11 +501,8 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     std::istream stream(&buffer);
     detail::mtl_names_reader names(mtl);
     if (!tinyobj::LoadObj(&attrib, &groups, &tiny_materials, &warning, &failure, &stream, &names, true, false)) {
-        std::string message = failure;
-        for (char& c : message)
-            if (c == '\n' || c == '\r')
-                c = ' ';
-        throw error(source_location{name}, "expected a valid OBJ file, found: " + message);
+        // tinyobjloader's message may quote the file: printable, and short
+        throw error(source_location{name}, "expected a valid OBJ file, found: " + printable(failure, 200));
     }
 
     obj_result result;
