@@ -151,7 +151,7 @@ public:
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
                 if (status != std::errc() || end != slash || c.index[part] == 0)
                     throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
-                                      "'" + std::string(p, slash) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
             } else if (part == 0) {
                 throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + printable(std::string(p, stop), 24) + "'",
                                   "a corner is v, v/vt, v//vn or v/vt/vn");
@@ -455,7 +455,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                                               [&](const mtl_entry& m) { return m.value.name == wanted; });
             if (!declared) {
                 if (!any_library)
-                    throw parse_error(at, "a material declared in a material library", "'" + wanted + "'",
+                    throw parse_error(at, "a material declared in a material library", "'" + printable(wanted, 24) + "'",
                                       "the file has no 'mtllib' line before this one; add one, or delete the usemtl lines");
                 std::vector<std::string> known;
                 for (const mtl_entry& m : materials)
@@ -463,8 +463,8 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 std::string list;
                 for (const std::string& k : known)
                     list += (list.empty() ? "" : ", ") + k;
-                throw parse_error(at, "a material declared in the material library", "'" + wanted + "'",
-                                  list.empty() ? "the library declares none" : "known: " + list);
+                throw parse_error(at, "a material declared in the material library", "'" + printable(wanted, 24) + "'",
+                                  list.empty() ? "the library declares none" : "known: " + printable(list, 200));
             }
         }
         // any other statement (o, g, s, comments, curves ...) is not used by rt
