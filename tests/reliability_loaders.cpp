@@ -506,6 +506,8 @@ TEST_CASE("outputs: check_image_path accepts exactly the extensions save_image w
             rt::save_image(folder.path() / name, img);
         } catch (const rt::error& e) {
             saved = e.what();
+        } catch (const rt::exercise_not_done&) {
+            // in a student kit the 8-bit encoder is an exercise: the format itself was accepted
         }
         CHECK(checked == saved);
         CHECK(fs::exists(folder.path() / name) == checked.empty());
