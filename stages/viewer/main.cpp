@@ -153,7 +153,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                            const rt::encoding& enc)
 {
     const viewer::view& v = done.settings;
-    auto number = [](double value) { return rt::detail::exact_number_text(rt::real(value)); };
+    auto number = [](double value) { return rt::exact_number_text(rt::real(value)); };
     std::vector<std::string> a = {input,
                                   "--width", std::to_string(v.width),
                                   "--height", std::to_string(v.height),
@@ -161,7 +161,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                   "--spp", std::to_string(done.pass.samples_per_pixel),
                                   "--sampler", rt::name_of(done.pass.sampler),
                                   "--filter", rt::name_of(v.reconstruction.kind),
-                                  "--filter-radius", rt::detail::exact_number_text(v.reconstruction.radius),
+                                  "--filter-radius", rt::exact_number_text(v.reconstruction.radius),
                                   "--max-depth", std::to_string(v.max_depth),
                                   "--seed", std::to_string(v.seed)};
     if (v.aov != rt::aov_kind::none) {
@@ -432,7 +432,7 @@ private:
     {
         if (shown_.height > 0)
             encode_rows(0, shown_.height);
-        say("exposure " + rt::detail::exact_number_text(rt::real(encoding_.exposure)) + ", tone map " +
+        say("exposure " + rt::exact_number_text(rt::real(encoding_.exposure)) + ", tone map " +
             rt::name_of(encoding_.tonemap));
     }
 
