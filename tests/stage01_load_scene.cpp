@@ -163,7 +163,7 @@ TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and 
         {"not a number", "sphere radius one\n", "bad.scene:1:15:", "expected a number for radius, found 'one'"},
         {"NaN", "sphere center nan 0 0\n", "bad.scene:1:15:", "finite"},
         {"inf", "light point position 0 inf 0\n", "bad.scene:1:24:", "finite"},
-        {"a number beyond float", "sphere radius 1e300\n", "bad.scene:1:15:", "within"},
+        {"a number beyond float and double", "sphere radius 1e400\n", "bad.scene:1:15:", "within"},
         {"negative radius", "sphere radius -2\n", "bad.scene:1:15:", "expected a positive radius"},
         {"zero image size", "image 0 480\n", "bad.scene:1:7:", "image width between 1 and"},
         {"absurd image size (the pixel limit)", "image 100000 100000\n", "bad.scene:1:7:", "pixels"},

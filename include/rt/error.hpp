@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -47,6 +48,17 @@ inline std::string to_string(const source_location& where)
             text += ':' + std::to_string(where.column);
     }
     return text;
+}
+
+/// Text from an input (a name, a path) made safe to print in a one-line
+/// message: bytes that are not printable ASCII become '?', and anything past
+/// `limit` characters is cut with "...".
+inline std::string printable(const std::string& text, std::size_t limit = 200)
+{
+    std::string shown;
+    for (char c : text.substr(0, limit))
+        shown += (c >= 32 && c < 127) ? c : '?';
+    return text.size() > limit ? shown + "..." : shown;
 }
 
 /// A bad input or a failed operation: the message is one line, ready to print.

@@ -220,13 +220,17 @@ void for_each_line(const std::string& text, const std::string& file, Each&& each
 inline std::string read_text(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes,
                              const source_location& named_at)
 {
-    const std::string name = path.string();
+    const std::string name = printable(path.string());
     std::error_code ec;
     const source_location at = named_at.file.empty() ? source_location{name} : named_at;
     if (std::filesystem::is_directory(path, ec))
         throw error(at, "expected " + what + " file, found a folder '" + name + "'; name the file itself");
     if (!std::filesystem::exists(path, ec))
         throw error(at, "expected " + what + " file, found no such file '" + name + "'; check the path");
+    // a device, pipe or socket could block or never end (/dev/zero): read regular files only
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw error(at, "expected " + what + " file, found a device, pipe or socket '" + name +
+                            "'; name a regular file");
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_bytes)
         throw error(at, "expected " + what + " file of at most " + std::to_string(max_bytes) + " bytes, found " +

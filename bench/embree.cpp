@@ -1,0 +1,504 @@
+// Experiment 6: rt's BVH against Embree 3, the same rays in the same run.
+//
+// For every mesh of ../shared/meshes (a mesh that is absent is skipped with a
+// message), both engines get the same triangles and the same rays:
+//   outside    primary rays from a camera outside the model, looking at it
+//              (row by row through pixel centres: coherent);
+//   centre     primary rays from the centre of the bounding box, 90 degree field of view;
+//   shadow     from each hit of those two sets to a light (any hit, segment
+//              ends just short of the light); the rays start at the hit point
+//              moved off the surface by rt::offset_ray_origin along the
+//              geometric normal that faces the light;
+//   incoherent from uniform random points of the bounding sphere to uniform
+//              random points of the box.
+// rt uses its scene-level accelerator (rt::accelerator, kind bvh: closest_hit
+// and any_hit), Embree rtcIntersect1 and rtcOccluded1 (single rays, the same
+// calling pattern as rt's) on a scene of default build quality. We report
+// build time (Embree with one thread and with all), rays per second on one
+// thread and on all, hit counts, the rays on which the two disagree, and the
+// ratio rt / Embree. Timings are the best of a few runs, taken alternately
+// (rt, Embree, rt, Embree, ...) so that both see the same machine.
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <rt/obj_loader.hpp>
+#include <rt/offset.hpp>
+#include <rt/random.hpp>
+#include <rt/scene.hpp>
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+#include <rt/intersect.hpp>
+#endif
+
+#include "bench.hpp"
+
+#ifndef RT_BENCH_EMBREE_VERSION
+#define RT_BENCH_EMBREE_VERSION RTC_VERSION_STRING
+#endif
+
+namespace {
+
+using rt::real;
+using rt::vec3;
+constexpr float infinity = std::numeric_limits<float>::infinity();
+
+/// A set of rays: origins, unit directions and segment ends.
+struct ray_set {
+    std::string name;
+    bool shadow = false;  ///< any hit (occlusion) instead of closest hit
+    std::vector<rt::ray> rays;
+    std::vector<float> tmax;
+    std::vector<unsigned> source;  ///< shadow rays: the triangle the ray starts on
+};
+
+/// What one engine answers for one ray: t of the closest hit (infinity on a
+/// miss) or, for shadow rays, 0 when occluded and infinity when not.
+using answers = std::vector<float>;
+
+class embree_scene {
+public:
+    embree_scene(const rt::mesh& m, const char* config)
+    {
+        device_ = rtcNewDevice(config);
+        if (!device_)
+            throw rt::error("bench_embree: rtcNewDevice failed (error " +
+                            std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        const auto start = bench::clock::now();
+        scene_ = rtcNewScene(device_);
+        RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangles.size()));
+        if (!vertices || !indices)
+            throw rt::error("bench_embree: Embree could not allocate the mesh's buffers");
+        for (std::size_t k = 0; k < m.positions.size(); ++k)
+            for (int axis = 0; axis < 3; ++axis)
+                vertices[3 * k + std::size_t(axis)] = float(m.positions[k][axis]);
+        for (std::size_t k = 0; k < m.triangles.size(); ++k)
+            for (std::size_t corner = 0; corner < 3; ++corner)
+                indices[3 * k + corner] = m.triangles[k][corner];
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(scene_, geometry);
+        rtcReleaseGeometry(geometry);
+        rtcCommitScene(scene_);
+        build_seconds_ = bench::seconds_since(start);
+        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+            throw rt::error("bench_embree: Embree failed to build the scene");
+    }
+    embree_scene(const embree_scene&) = delete;
+    embree_scene& operator=(const embree_scene&) = delete;
+    ~embree_scene()
+    {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+
+    double build_seconds() const { return build_seconds_; }
+
+    float closest(const rt::ray& r, float tmax) const
+    {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit query;
+        set_ray(query.ray, r, tmax);
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &context, &query);
+        return query.hit.geomID == RTC_INVALID_GEOMETRY_ID ? infinity : query.ray.tfar;
+    }
+
+    /// The closest hit's t, triangle and geometric normal (unit, not oriented).
+    bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal) const
+    {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit query;
+        set_ray(query.ray, r, tmax);
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &context, &query);
+        if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return false;
+        t = query.ray.tfar;
+        triangle = query.hit.primID;
+        normal = glm::normalize(vec3(real(query.hit.Ng_x), real(query.hit.Ng_y), real(query.hit.Ng_z)));
+        return true;
+    }
+
+    bool occluded(const rt::ray& r, float tmax) const
+    {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRay query;
+        set_ray(query, r, tmax);
+        rtcOccluded1(scene_, &context, &query);
+        return query.tfar < 0; // Embree sets tfar = -inf on a hit
+    }
+
+private:
+    static void set_ray(RTCRay& out, const rt::ray& r, float tmax)
+    {
+        out.org_x = float(r.origin.x);
+        out.org_y = float(r.origin.y);
+        out.org_z = float(r.origin.z);
+        out.dir_x = float(r.direction.x);
+        out.dir_y = float(r.direction.y);
+        out.dir_z = float(r.direction.z);
+        out.tnear = 0;
+        out.tfar = tmax;
+        out.time = 0;
+        out.mask = ~0u;
+        out.id = 0;
+        out.flags = 0;
+    }
+
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    double build_seconds_ = 0;
+};
+
+struct model {
+    std::string file;
+    rt::mesh geometry;
+    rt::aabb box;
+};
+
+/// Primary rays of a pinhole camera through the pixel centres, row by row.
+ray_set primary(const std::string& name, const vec3& eye, const vec3& look_at, real fov, int width, int height)
+{
+    rt::camera cam;
+    cam.eye = eye;
+    cam.look_at = look_at;
+    cam.up = std::fabs(glm::normalize(look_at - eye).y) > real(0.99) ? vec3(0, 0, 1) : vec3(0, 1, 0);
+    cam.fov_degrees = fov;
+    const rt::ray_generator gen = rt::make_ray_generator(cam, width, height);
+    ray_set set;
+    set.name = name;
+    for (int j = height - 1; j >= 0; --j)
+        for (int i = 0; i < width; ++i) {
+            rt::ray r = rt::pixel_ray(gen, i, j);
+            r.direction = glm::normalize(r.direction);
+            set.rays.push_back(r);
+            set.tmax.push_back(infinity);
+        }
+    return set;
+}
+
+ray_set incoherent(const model& m, std::size_t count)
+{
+    ray_set set;
+    set.name = "incoherent";
+    const vec3 centre = m.box.center();
+    const real radius = real(0.5) * glm::length(m.box.extent());
+    rt::pcg32 rng(2024, 11);
+    auto uniform = [&] { return real(rng.next_float()); };
+    while (set.rays.size() < count) {
+        // a uniform point of the sphere: z uniform in [-1, 1], angle uniform
+        const real z = 2 * uniform() - 1, phi = real(6.283185307179586) * uniform();
+        const real s = std::sqrt(std::max(real(0), 1 - z * z));
+        const vec3 origin = centre + radius * vec3(s * std::cos(phi), s * std::sin(phi), z);
+        const vec3 target = m.box.lo + vec3(uniform(), uniform(), uniform()) * m.box.extent();
+        const vec3 d = target - origin;
+        if (glm::dot(d, d) == 0)
+            continue;
+        set.rays.push_back(rt::ray{origin, glm::normalize(d)});
+        set.tmax.push_back(infinity);
+    }
+    return set;
+}
+
+/// Shadow rays from the hits of `from` (found by Embree) towards `light`.
+void add_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& embree, const vec3& light)
+{
+    for (const rt::ray& r : from.rays) {
+        float t = 0;
+        unsigned triangle = 0;
+        vec3 n;
+        if (!embree.closest_with_normal(r, infinity, t, triangle, n))
+            continue;
+        const vec3 p = r.at(real(t));
+        const vec3 to_light = light - p;
+        const real distance = glm::length(to_light);
+        if (!(distance > 0))
+            continue;
+        const vec3 l = to_light / distance;
+        if (glm::dot(n, l) < 0) // leave on the side the light is on
+            n = -n;
+        const vec3 origin = rt::offset_ray_origin(p, n);
+        const real remaining = glm::length(light - origin);
+        shadow.rays.push_back(rt::ray{origin, glm::normalize(light - origin)});
+        shadow.tmax.push_back(float(remaining * (real(1) - real(1e-4))));
+        shadow.source.push_back(triangle);
+    }
+}
+
+/// Whether the ray truly meets the triangle a, b, c at 0 < t <= tmax:
+/// Moller-Trumbore (1997) in long double on the float inputs, with a margin of
+/// 1e-9 on the barycentrics so that edge ties do not count.
+bool truly_hits(const rt::ray& r, const vec3& a, const vec3& b, const vec3& c, float tmax)
+{
+    using L = long double;
+    const L o[3] = {r.origin.x, r.origin.y, r.origin.z}, d[3] = {r.direction.x, r.direction.y, r.direction.z};
+    L e1[3], e2[3], s[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = L(b[k]) - a[k];
+        e2[k] = L(c[k]) - a[k];
+        s[k] = o[k] - a[k];
+    }
+    auto cross = [](const L* x, const L* y, L* z) {
+        z[0] = x[1] * y[2] - x[2] * y[1];
+        z[1] = x[2] * y[0] - x[0] * y[2];
+        z[2] = x[0] * y[1] - x[1] * y[0];
+    };
+    auto dot = [](const L* x, const L* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    L p[3], q[3];
+    cross(d, e2, p);
+    const L det = dot(e1, p);
+    if (det == 0)
+        return false;
+    cross(s, e1, q);
+    const L u = dot(s, p) / det, v = dot(d, q) / det, t = dot(e2, q) / det;
+    const L margin = 1e-9L;
+    return u > margin && v > margin && u + v < 1 - margin && t > 0 && t <= tmax;
+}
+
+template <class Query>
+double time_set(const ray_set& set, unsigned threads, int repeats, answers& out, Query&& query)
+{
+    out.assign(set.rays.size(), 0);
+    return bench::best_time(repeats, [&] {
+        bench::parallel_blocks(set.rays.size(), threads, 1024, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k)
+                out[k] = query(set.rays[k], set.tmax[k]);
+        });
+    });
+}
+
+std::size_t count_hits(const answers& a)
+{
+    std::size_t n = 0;
+    for (float t : a)
+        n += t < infinity;
+    return n;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    return bench::run("bench_embree", [&] {
+        const bench::options o =
+            bench::parse_options(argc, argv, "bench_embree: experiment 6, rt's BVH against Embree 3 on the shared meshes");
+        const unsigned all = bench::hardware_threads();
+        const int repeats = o.quick ? 1 : 5; // best of 5, alternately: the machine is shared
+        const int width = o.quick ? 64 : 1024, height = o.quick ? 48 : 768;
+        const std::size_t incoherent_count = o.quick ? 4096 : std::size_t(1) << 20;
+        // quick mode: the two small meshes only (loading the 1.1M-triangle bunny alone takes seconds)
+        std::vector<std::string> files = {"stanford-bunny.obj", "bunny-loop2.obj", "conference.obj",
+                                          "sibenik.obj", "sponza-dabrovic.obj", "CornellBox-Original.obj"};
+        if (o.quick)
+            files = {"stanford-bunny.obj", "CornellBox-Original.obj"};
+        for (const std::string& only : o.extra) // a mesh name on the command line limits the run to it
+            if (only.find(".obj") != std::string::npos)
+                files = {only};
+
+        bench::csv rays("rt's BVH against Embree " RT_BENCH_EMBREE_VERSION ": rays per second (bench/embree.cpp)",
+                        {"mesh", "triangles", "set", "rays", "threads", "rt_seconds", "embree_seconds",
+                         "rt_mrays_per_s", "embree_mrays_per_s", "ratio_rt_over_embree", "rt_hits", "embree_hits",
+                         "hit_mismatch", "depth_mismatch"});
+        bench::csv builds("rt's BVH against Embree " RT_BENCH_EMBREE_VERSION ": build time (bench/embree.cpp)",
+                          {"mesh", "triangles", "dropped_degenerate", "rt_build_seconds", "embree_build_seconds_1_thread",
+                           "embree_build_seconds_all_threads", "ratio_rt_over_embree_1_thread"});
+        for (bench::csv* table : {&rays, &builds}) {
+            table->note("embree", std::string("Embree ") + RT_BENCH_EMBREE_VERSION +
+                                       " (Debian libembree-dev), rtcIntersect1 / rtcOccluded1, default build quality");
+            table->note("triangles", "as rt::load_obj gives them (zero-area triangles dropped); both engines get the same");
+            table->note("rays", "outside and centre " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " primary rays; shadow rays from their hits; " +
+                                    std::to_string(incoherent_count) + " incoherent rays");
+#if !defined(RT_BENCH_HAS_ACCELERATOR)
+            table->note("rt", "rt::accelerator (include/rt/intersect.hpp) not present in this tree: rt columns are nan");
+#endif
+        }
+
+        const std::filesystem::path folder = o.shared / "meshes";
+        for (const std::string& file : files) {
+            const std::filesystem::path path = folder / file;
+            if (!std::filesystem::exists(path)) {
+                std::cout << "skipping " << path.string() << ": not found\n";
+                continue;
+            }
+            model m;
+            m.file = file;
+            auto load_start = bench::clock::now();
+            m.geometry = rt::load_obj(path).geometry;
+            m.box = rt::bounds(m.geometry);
+            std::cout << file << ": " << m.geometry.triangles.size() << " triangles, loaded in "
+                      << bench::seconds_since(load_start) << " s\n";
+            const std::size_t triangles = m.geometry.triangles.size();
+
+            // builds: Embree on one thread, Embree on all, rt
+            double embree_build_1 = 1e300;
+            for (int k = 0; k < repeats; ++k)
+                embree_build_1 = std::min(embree_build_1, embree_scene(m.geometry, "threads=1").build_seconds());
+            embree_scene embree(m.geometry, "threads=1"); // traversal needs no TBB workers
+            double embree_build_all = embree.build_seconds();
+            for (int k = 1; k < repeats; ++k)
+                embree_build_all = std::min(embree_build_all, embree_scene(m.geometry, nullptr).build_seconds());
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+            rt::scene rt_scene;
+            rt_scene.shapes.push_back(m.geometry);
+            double rt_build = 1e300;
+            for (int k = 0; k < repeats; ++k) {
+                const auto start = bench::clock::now();
+                rt::accelerator probe(rt_scene, rt::accelerator_kind::bvh);
+                rt_build = std::min(rt_build, bench::seconds_since(start));
+                bench::keep(probe);
+            }
+            const rt::accelerator accel(rt_scene, rt::accelerator_kind::bvh);
+#else
+            const double rt_build = std::nan("");
+#endif
+            builds.row() << file << triangles << m.geometry.dropped_degenerate << rt_build << embree_build_1 << embree_build_all
+                         << rt_build / embree_build_1;
+            std::cout << "  build: rt " << rt_build << " s, Embree " << embree_build_1 << " s (1 thread), "
+                      << embree_build_all << " s (" << all << " threads)\n";
+
+            // the rays
+            const vec3 centre = m.box.center();
+            const real radius = real(0.5) * glm::length(m.box.extent());
+            std::vector<ray_set> sets;
+            sets.push_back(primary("outside", centre + real(2.2) * radius * glm::normalize(vec3(0.35, 0.3, 1)),
+                                   centre, 45, width, height));
+            sets.push_back(primary("centre", centre, centre + vec3(1, real(-0.1), real(0.2)), 90, width, height));
+            ray_set shadow;
+            shadow.name = "shadow";
+            shadow.shadow = true;
+            // a light above and in front of the model for the outside view, one
+            // inside the box, above the centre, for the centre view
+            add_shadow_rays(shadow, sets[0], embree, centre + real(1.5) * radius * glm::normalize(vec3(-0.4, 1, 0.6)));
+            add_shadow_rays(shadow, sets[1], embree,
+                            centre + vec3(real(0.1), real(0.35), real(0.05)) * m.box.extent());
+            sets.push_back(std::move(shadow));
+            sets.push_back(incoherent(m, incoherent_count));
+
+            for (const ray_set& set : sets) {
+                for (unsigned threads : {1u, all}) {
+                    answers rt_answer, embree_answer;
+                    double rt_seconds = std::nan(""), embree_seconds = 1e300;
+                    for (int k = 0; k < repeats; ++k) {
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+                        double t;
+                        if (set.shadow)
+                            t = time_set(set, threads, 1, rt_answer, [&](const rt::ray& r, float tmax) {
+                                return accel.any_hit(r, real(0), real(tmax)) ? 0.0f : infinity;
+                            });
+                        else
+                            t = time_set(set, threads, 1, rt_answer, [&](const rt::ray& r, float tmax) {
+                                rt::hit_record rec;
+                                return accel.closest_hit(r, real(0), real(tmax), rec) ? float(rec.t) : infinity;
+                            });
+                        rt_seconds = k == 0 ? t : std::min(rt_seconds, t);
+#endif
+                        double e;
+                        if (set.shadow)
+                            e = time_set(set, threads, 1, embree_answer, [&](const rt::ray& r, float tmax) {
+                                return embree.occluded(r, tmax) ? 0.0f : infinity;
+                            });
+                        else
+                            e = time_set(set, threads, 1, embree_answer, [&](const rt::ray& r, float tmax) {
+                                return embree.closest(r, tmax);
+                            });
+                        embree_seconds = std::min(embree_seconds, e);
+                    }
+                    std::size_t hit_mismatch = 0, depth_mismatch = 0;
+                    if (!rt_answer.empty())
+                        for (std::size_t k = 0; k < set.rays.size(); ++k) {
+                            const float a = rt_answer[k], b = embree_answer[k];
+                            if ((a < infinity) != (b < infinity))
+                                ++hit_mismatch;
+                            else if (a < infinity && std::fabs(a - b) > 1e-4f * std::max(1.0f, std::fabs(b)))
+                                ++depth_mismatch;
+                        }
+                    // shadow rays on which the two disagree: does Embree's occluder
+                    // lie on the triangle the ray starts from (self-intersection)?
+                    std::size_t embree_self = 0, embree_coplanar = 0, real_occluder = 0, embree_only = 0, rt_only = 0;
+                    std::vector<std::string> examples; // t / scene radius of the other occluders
+                    if (set.shadow && !rt_answer.empty())
+                        for (std::size_t k = 0; k < set.rays.size(); ++k) {
+                            const bool rt_blocked = rt_answer[k] < infinity, embree_blocked = embree_answer[k] < infinity;
+                            if (rt_blocked == embree_blocked)
+                                continue;
+                            if (rt_blocked) {
+                                ++rt_only;
+                                continue;
+                            }
+                            ++embree_only;
+                            float t = 0;
+                            unsigned triangle = 0;
+                            vec3 normal;
+                            if (!embree.closest_with_normal(set.rays[k], set.tmax[k], t, triangle, normal))
+                                continue;
+                            if (triangle == set.source[k]) {
+                                ++embree_self;
+                                continue;
+                            }
+                            // another triangle: is it in the plane of the one the ray starts on
+                            // (overlapping, coplanar geometry), and how far along the ray?
+                            const rt::mesh& g = m.geometry;
+                            auto corner = [&](unsigned tri, int c) { return g.positions[g.triangles[tri][std::size_t(c)]]; };
+                            const vec3 a = corner(set.source[k], 0);
+                            const vec3 n = glm::normalize(glm::cross(corner(set.source[k], 1) - a, corner(set.source[k], 2) - a));
+                            real off_plane = 0;
+                            for (int c = 0; c < 3; ++c)
+                                off_plane = std::max(off_plane, std::fabs(glm::dot(n, corner(triangle, c) - a)));
+                            if (off_plane <= real(1e-5) * radius) {
+                                ++embree_coplanar;
+                                continue;
+                            }
+                            // a real occluder? Moller-Trumbore in long double on the same inputs
+                            if (truly_hits(set.rays[k], corner(triangle, 0), corner(triangle, 1), corner(triangle, 2),
+                                           set.tmax[k])) {
+                                ++real_occluder;
+                                if (examples.size() < 5)
+                                    examples.push_back(std::to_string(t / float(radius)));
+                            }
+                        }
+                    if (embree_only + rt_only > 0) {
+                        std::string others;
+                        for (const std::string& e : examples)
+                            others += (others.empty() ? "" : " ") + e;
+                        const std::string text =
+                            std::to_string(rt_only) + " blocked for rt only, " + std::to_string(embree_only) +
+                            " for Embree only: " + std::to_string(embree_self) + " by the triangle the ray starts on, " +
+                            std::to_string(embree_coplanar) + " by a triangle in its plane (overlapping geometry), " +
+                            std::to_string(real_occluder) +
+                            " by a triangle the ray truly hits (long-double Moller-Trumbore)" +
+                            (others.empty() ? "" : " at t / scene radius = " + others + " ...");
+                        std::cout << "  shadow mismatches: " << text << '\n';
+                        rays.note(file + " shadow mismatches (" + std::to_string(threads) + " threads)", text);
+                    }
+                    const double n = double(set.rays.size());
+                    const double rt_mrays = n / rt_seconds / 1e6, embree_mrays = n / embree_seconds / 1e6;
+                    rays.row() << file << triangles << set.name << set.rays.size() << threads << rt_seconds
+                               << embree_seconds << rt_mrays << embree_mrays << rt_mrays / embree_mrays
+                               << (rt_answer.empty() ? std::string("nan") : std::to_string(count_hits(rt_answer)))
+                               << count_hits(embree_answer) << hit_mismatch << depth_mismatch;
+                    std::cout << "  " << set.name << ", " << threads << " thread(s): rt " << rt_mrays
+                              << " Mrays/s, Embree " << embree_mrays << " Mrays/s, ratio " << rt_mrays / embree_mrays
+                              << "; hits " << (rt_answer.empty() ? 0 : count_hits(rt_answer)) << " vs "
+                              << count_hits(embree_answer) << ", mismatches " << hit_mismatch << " + "
+                              << depth_mismatch << " in depth\n";
+                }
+            }
+        }
+        rays.write(o, "embree_rays.csv");
+        builds.write(o, "embree_build.csv");
+        return 0;
+    });
+}
