@@ -1072,10 +1072,10 @@ TEST_CASE("camera statement numbers: the shortest text when it reads back exactl
     std::ostringstream six_digits;
     six_digits << rt::real(1) / rt::real(3);
     CHECK(read_back(six_digits.str()) != rt::real(1) / rt::real(3));
-    CHECK(rt::detail::exact_number_text(rt::real(0)) == "0");
-    CHECK(rt::detail::exact_number_text(rt::real(40)) == "40");
-    CHECK(rt::detail::exact_number_text(rt::real(1.6)) == "1.6");     // the real nearest 1.6, written short
-    CHECK(rt::detail::exact_number_text(rt::real(-0.3)) == "-0.3");
+    CHECK(rt::exact_number_text(rt::real(0)) == "0");
+    CHECK(rt::exact_number_text(rt::real(40)) == "40");
+    CHECK(rt::exact_number_text(rt::real(1.6)) == "1.6");     // the real nearest 1.6, written short
+    CHECK(rt::exact_number_text(rt::real(-0.3)) == "-0.3");
     // every bit pattern of a finite real, sampled: 20000 of them, plus the extremes
     std::vector<rt::real> values = {std::numeric_limits<rt::real>::max(), std::numeric_limits<rt::real>::lowest(),
                                     std::numeric_limits<rt::real>::min(), std::numeric_limits<rt::real>::denorm_min(),
@@ -1095,7 +1095,7 @@ TEST_CASE("camera statement numbers: the shortest text when it reads back exactl
     }
     int wrong = 0;
     for (const rt::real value : values)
-        if (read_back(rt::detail::exact_number_text(value)) != value)
+        if (read_back(rt::exact_number_text(value)) != value)
             ++wrong;
     CHECK(wrong == 0);
 }

@@ -207,11 +207,10 @@ inline encoding output_encoding(aov_kind aov, const encoding& shaded)
     return encoding{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
 }
 
-namespace detail {
-
-/// `value` as the shortest text that the scene loader (which reads a double
-/// and rounds it to rt::real) turns back into exactly `value`; the 17 digits of
-/// the double otherwise, which always come back exactly.
+/// `value` as the shortest text that the scene loader and the command-line
+/// options (which read a double and round it to rt::real) turn back into
+/// exactly `value`; the 17 digits of the double otherwise, which always come
+/// back exactly.
 inline std::string exact_number_text(real value)
 {
     char buffer[64];
@@ -227,6 +226,8 @@ inline std::string exact_number_text(real value)
         std::to_chars(buffer, buffer + sizeof buffer, double(value), std::chars_format::general, 17);
     return std::string(buffer, full.ptr);
 }
+
+namespace detail {
 
 inline std::string exact_vector_text(const vec3& v)
 {
@@ -245,11 +246,11 @@ inline std::string camera_statement(const camera& cam)
     text += " look_at " + detail::exact_vector_text(cam.look_at);
     text += " up " + detail::exact_vector_text(cam.up);
     if (cam.plane)
-        text += " window " + detail::exact_number_text(cam.plane->l) + ' ' + detail::exact_number_text(cam.plane->r) +
-                ' ' + detail::exact_number_text(cam.plane->b) + ' ' + detail::exact_number_text(cam.plane->t);
+        text += " window " + exact_number_text(cam.plane->l) + ' ' + exact_number_text(cam.plane->r) +
+                ' ' + exact_number_text(cam.plane->b) + ' ' + exact_number_text(cam.plane->t);
     else if (cam.fov_degrees)
-        text += " fov " + detail::exact_number_text(*cam.fov_degrees);
-    text += " focal " + detail::exact_number_text(cam.focal_distance);
+        text += " fov " + exact_number_text(*cam.fov_degrees);
+    text += " focal " + exact_number_text(cam.focal_distance);
     return text;
 }
 

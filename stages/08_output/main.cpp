@@ -137,8 +137,9 @@ int main(int argc, char** argv)
         }
         const stage::render_settings& render = set.render;
         if (render.input.empty() == (set.pattern == pattern_kind::none))
-            throw rt::error(render.input.empty() ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
-                                                 : "expected a scene file or --pattern, found both; see --help");
+            throw rt::error(render.input.empty()
+                                ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
+                                : "expected a scene file or --pattern, found both; see --help");
         if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::none)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
         if (set.pattern != pattern_kind::none && render.camera)

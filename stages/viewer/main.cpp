@@ -20,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -153,7 +154,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                            const rt::encoding& enc)
 {
     const viewer::view& v = done.settings;
-    auto number = [](double value) { return rt::detail::exact_number_text(rt::real(value)); };
+    auto number = [](double value) { return rt::exact_number_text(rt::real(value)); };
     std::vector<std::string> a = {input,
                                   "--width", std::to_string(v.width),
                                   "--height", std::to_string(v.height),
@@ -161,7 +162,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                   "--spp", std::to_string(done.pass.samples_per_pixel),
                                   "--sampler", rt::name_of(done.pass.sampler),
                                   "--filter", rt::name_of(v.reconstruction.kind),
-                                  "--filter-radius", rt::detail::exact_number_text(v.reconstruction.radius),
+                                  "--filter-radius", rt::exact_number_text(v.reconstruction.radius),
                                   "--max-depth", std::to_string(v.max_depth),
                                   "--seed", std::to_string(v.seed)};
     if (v.aov != rt::aov_kind::none) {
@@ -219,19 +220,19 @@ public:
                 throw rt::parse_error(c.where, "an SDL key name (\"5\", \"]\", \"s\", \"Escape\")",
                                       stage::quoted(c.arguments[0]));
 
-        window_ = SDL_CreateWindow("rt viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, view_.width,
-                                   view_.height, SDL_WINDOW_SHOWN);
+        window_.reset(SDL_CreateWindow("rt viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, view_.width,
+                                       view_.height, SDL_WINDOW_SHOWN));
         if (!window_)
             throw sdl_failure("open a window");
-        renderer_ = SDL_CreateRenderer(window_, -1, 0);
+        renderer_.reset(SDL_CreateRenderer(window_.get(), -1, 0));
         if (!renderer_)
             throw sdl_failure("create a renderer for the window");
-        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING, view_.width,
-                                     view_.height);
+        texture_.reset(SDL_CreateTexture(renderer_.get(), SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
+                                         view_.width, view_.height));
         if (!texture_)
             throw sdl_failure("create a texture");
         bytes_.assign(std::size_t(view_.width) * std::size_t(view_.height) * 3, 0);
-        SDL_UpdateTexture(texture_, nullptr, bytes_.data(), view_.width * 3);
+        SDL_UpdateTexture(texture_.get(), nullptr, bytes_.data(), view_.width * 3);
         progressive_.emplace(std::move(scene));
         progressive_->start(view_);
     }
@@ -239,16 +240,7 @@ public:
     app(const app&) = delete;
     app& operator=(const app&) = delete;
 
-    ~app()
-    {
-        progressive_.reset(); // stop the worker before the window goes
-        if (texture_)
-            SDL_DestroyTexture(texture_);
-        if (renderer_)
-            SDL_DestroyRenderer(renderer_);
-        if (window_)
-            SDL_DestroyWindow(window_);
-    }
+    ~app() { progressive_.reset(); } // stop the worker before the window goes
 
     /// Runs until the window closes; the exit code.
     int run()
@@ -386,7 +378,8 @@ private:
             break;
         case SDLK_t:
             encoding_.tonemap =
-                next_of(encoding_.tonemap, {rt::tonemap_kind::clamp, rt::tonemap_kind::reinhard, rt::tonemap_kind::aces});
+                next_of(encoding_.tonemap,
+                        {rt::tonemap_kind::clamp, rt::tonemap_kind::reinhard, rt::tonemap_kind::aces});
             say(std::string("tone map: ") + rt::name_of(encoding_.tonemap));
             reencode();
             break;
@@ -432,7 +425,7 @@ private:
     {
         if (shown_.height > 0)
             encode_rows(0, shown_.height);
-        say("exposure " + rt::detail::exact_number_text(rt::real(encoding_.exposure)) + ", tone map " +
+        say("exposure " + rt::exact_number_text(rt::real(encoding_.exposure)) + ", tone map " +
             rt::name_of(encoding_.tonemap));
     }
 
@@ -440,13 +433,14 @@ private:
     void encode_rows(int y0, int y1)
     {
         const rt::encoding enc = display_encoding();
+        const std::size_t row_bytes = std::size_t(shown_.width) * 3;
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < shown_.width; ++x) {
                 const std::array<std::uint8_t, 3> rgb = rt::encode_color(shown_.at(x, y), enc);
-                std::copy(rgb.begin(), rgb.end(), &bytes_[(std::size_t(y) * std::size_t(shown_.width) + std::size_t(x)) * 3]);
+                std::copy(rgb.begin(), rgb.end(), &bytes_[std::size_t(y) * row_bytes + std::size_t(x) * 3]);
             }
         const SDL_Rect rows{0, y0, shown_.width, y1 - y0};
-        SDL_UpdateTexture(texture_, &rows, &bytes_[std::size_t(y0) * std::size_t(shown_.width) * 3], shown_.width * 3);
+        SDL_UpdateTexture(texture_.get(), &rows, &bytes_[std::size_t(y0) * row_bytes], int(row_bytes));
         redraw_ = true;
     }
 
@@ -490,26 +484,26 @@ private:
             if (status_.seconds > 0)
                 title << " - " << rt::format_count(double(status_.rays) / status_.seconds) << "rays/s";
         }
-        SDL_SetWindowTitle(window_, title.str().c_str());
+        SDL_SetWindowTitle(window_.get(), title.str().c_str());
     }
 
     void draw()
     {
-        SDL_RenderClear(renderer_);
-        SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
-        SDL_RenderPresent(renderer_);
+        SDL_RenderClear(renderer_.get());
+        SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
+        SDL_RenderPresent(renderer_.get());
         redraw_ = false;
     }
 
     /// What the window shows, read back from the renderer, to a .png or .ppm file.
     void screenshot(const std::string& path)
     {
-        SDL_RenderClear(renderer_);
-        SDL_RenderCopy(renderer_, texture_, nullptr, nullptr);
+        SDL_RenderClear(renderer_.get());
+        SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
         std::vector<std::uint8_t> pixels(std::size_t(view_.width) * std::size_t(view_.height) * 3);
-        if (SDL_RenderReadPixels(renderer_, nullptr, SDL_PIXELFORMAT_RGB24, pixels.data(), view_.width * 3) != 0)
+        if (SDL_RenderReadPixels(renderer_.get(), nullptr, SDL_PIXELFORMAT_RGB24, pixels.data(), view_.width * 3) != 0)
             throw sdl_failure("read the window's pixels back");
-        SDL_RenderPresent(renderer_);
+        SDL_RenderPresent(renderer_.get());
         const std::string format = rt::image_format_of(path);
         if (format == ".pfm")
             throw rt::error(rt::source_location{path}, "expected a screenshot named .png or .ppm, found .pfm; "
@@ -565,7 +559,7 @@ private:
             } else if (c.name == "zoom") {
                 SDL_Event e{};
                 e.type = SDL_MOUSEWHEEL;
-                e.wheel.windowID = SDL_GetWindowID(window_);
+                e.wheel.windowID = SDL_GetWindowID(window_.get());
                 e.wheel.y = int(c.number(0));
                 e.wheel.direction = SDL_MOUSEWHEEL_NORMAL;
                 SDL_PushEvent(&e);
@@ -574,7 +568,7 @@ private:
             } else if (c.name == "key") {
                 SDL_Event e{};
                 e.type = SDL_KEYDOWN;
-                e.key.windowID = SDL_GetWindowID(window_);
+                e.key.windowID = SDL_GetWindowID(window_.get());
                 e.key.state = SDL_PRESSED;
                 e.key.keysym.sym = SDL_GetKeyFromName(c.arguments[0].c_str());
                 e.key.keysym.scancode = SDL_GetScancodeFromKey(e.key.keysym.sym);
@@ -588,7 +582,7 @@ private:
                 screenshot(c.arguments[0]);
             } else if (c.name == "title") {
                 update_title(true);
-                const std::string text = SDL_GetWindowTitle(window_);
+                const std::string text = SDL_GetWindowTitle(window_.get());
                 rt::write_atomically(c.arguments[0], [&](std::ostream& out) { out << text << '\n'; });
             } else if (c.name == "save" || c.name == "args") {
                 const std::optional<viewer::completed_image> done = progressive_->completed();
@@ -613,7 +607,7 @@ private:
     /// A drag with `button` from the window's centre by (dx, dy), as SDL events.
     void drag(std::uint8_t button, int dx, int dy)
     {
-        const std::uint32_t window = SDL_GetWindowID(window_);
+        const std::uint32_t window = SDL_GetWindowID(window_.get());
         const int x = view_.width / 2, y = view_.height / 2;
         SDL_Event e{};
         e.type = SDL_MOUSEBUTTONDOWN;
@@ -650,9 +644,15 @@ private:
     std::size_t next_command_ = 0;
     std::optional<std::chrono::steady_clock::time_point> sleep_until_;
 
-    SDL_Window* window_ = nullptr;
-    SDL_Renderer* renderer_ = nullptr;
-    SDL_Texture* texture_ = nullptr;
+    struct sdl_deleter {
+        void operator()(SDL_Window* w) const { SDL_DestroyWindow(w); }
+        void operator()(SDL_Renderer* r) const { SDL_DestroyRenderer(r); }
+        void operator()(SDL_Texture* t) const { SDL_DestroyTexture(t); }
+    };
+    // destroyed in the reverse order: texture, renderer, window
+    std::unique_ptr<SDL_Window, sdl_deleter> window_;
+    std::unique_ptr<SDL_Renderer, sdl_deleter> renderer_;
+    std::unique_ptr<SDL_Texture, sdl_deleter> texture_;
     std::optional<viewer::progressive_renderer> progressive_;
 
     rt::image shown_;

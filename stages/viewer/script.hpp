@@ -112,10 +112,11 @@ inline std::vector<script_command> parse_script(const std::string& text, const s
         for (std::size_t k = 0; k < given; ++k) {
             const char kind = kinds[k];
             const std::string& word = words[k + 1].text;
-            if (kind != 'w' && !detail::is_number(word, kind != 'n'))
-                throw rt::parse_error({name, line, words[k + 1].column},
-                                      kind == 'n' ? "a number between -1e6 and 1e6" : "a whole number from 0 to 1000000",
-                                      "'" + word + "'");
+            if (kind != 'w' && !detail::is_number(word, kind != 'n')) {
+                const std::string expected =
+                    kind == 'n' ? "a number between -1e6 and 1e6" : "a whole number from 0 to 1000000";
+                throw rt::parse_error({name, line, words[k + 1].column}, expected, "'" + word + "'");
+            }
             command.arguments.push_back(word);
         }
         commands.push_back(command);
