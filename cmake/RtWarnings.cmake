@@ -2,6 +2,11 @@
 # -Werror is added only by the dev/ci presets (RT_WERROR), never by default.
 option(RT_WERROR "Treat warnings as errors in rt's own targets" OFF)
 option(RT_SANITIZE "Build rt's own targets with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
+option(RT_TSAN "Build rt's own targets with ThreadSanitizer (not together with RT_SANITIZE)" OFF)
+if(RT_SANITIZE AND RT_TSAN)
+  message(FATAL_ERROR "RT_SANITIZE and RT_TSAN cannot be combined (ThreadSanitizer excludes AddressSanitizer); "
+                      "use the asan and tsan presets separately")
+endif()
 
 add_library(rt_warnings INTERFACE)
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
@@ -12,6 +17,10 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
   if(RT_SANITIZE)
     target_compile_options(rt_warnings INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
     target_link_options(rt_warnings INTERFACE -fsanitize=address,undefined -fno-sanitize-recover=all)
+  endif()
+  if(RT_TSAN)
+    target_compile_options(rt_warnings INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
+    target_link_options(rt_warnings INTERFACE -fsanitize=thread)
   endif()
 elseif(MSVC)
   target_compile_options(rt_warnings INTERFACE /W4 $<$<BOOL:${RT_WERROR}>:/WX>)

@@ -8,6 +8,7 @@
 #include <string>
 #include <variant>
 
+#include <rt/render_setup.hpp>
 #include <rt/scene_loader.hpp>
 
 namespace {
@@ -162,7 +163,7 @@ TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and 
         {"not a number", "sphere radius one\n", "bad.scene:1:15:", "expected a number for radius, found 'one'"},
         {"NaN", "sphere center nan 0 0\n", "bad.scene:1:15:", "finite"},
         {"inf", "light point position 0 inf 0\n", "bad.scene:1:24:", "finite"},
-        {"a number beyond float", "sphere radius 1e300\n", "bad.scene:1:15:", "within"},
+        {"a number beyond float and double", "sphere radius 1e400\n", "bad.scene:1:15:", "within"},
         {"negative radius", "sphere radius -2\n", "bad.scene:1:15:", "expected a positive radius"},
         {"zero image size", "image 0 480\n", "bad.scene:1:7:", "image width between 1 and"},
         {"absurd image size (the pixel limit)", "image 100000 100000\n", "bad.scene:1:7:", "pixels"},
@@ -209,4 +210,56 @@ TEST_CASE("a missing or unreadable scene file is a clear error")
     } catch (const rt::error& e) {
         CHECK(std::string(e.what()).find("found a folder") != std::string::npos);
     }
+}
+
+TEST_CASE("a camera written as a statement reads back as the same camera")
+{
+    // stage08_output --camera and the viewer pass cameras this way
+    rt::camera cam;
+    cam.eye = rt::vec3(rt::real(0.1), rt::real(1) / rt::real(3), rt::real(-7.25));
+    cam.look_at = rt::vec3(rt::real(1e-7), rt::real(2.5), rt::real(-1) / rt::real(7));
+    cam.up = rt::vec3(rt::real(0.2), 1, rt::real(0.05));
+    cam.fov_degrees = rt::real(37.123456789);
+    cam.focal_distance = rt::real(1.75);
+    const rt::camera back = rt::parse_camera_statement(rt::camera_statement(cam));
+    CHECK(back.kind == cam.kind);
+    CHECK(back.eye == cam.eye); // exactly, not approximately
+    CHECK(back.look_at == cam.look_at);
+    CHECK(back.up == cam.up);
+    REQUIRE(back.fov_degrees.has_value());
+    CHECK(*back.fov_degrees == *cam.fov_degrees);
+    CHECK(!back.plane.has_value());
+    CHECK(back.focal_distance == cam.focal_distance);
+
+    cam.kind = rt::projection::orthographic;
+    cam.fov_degrees.reset();
+    cam.plane = rt::window{rt::real(-0.3), rt::real(0.9), rt::real(-1) / rt::real(3), rt::real(0.6)};
+    const rt::camera flat = rt::parse_camera_statement(rt::camera_statement(cam));
+    CHECK(flat.kind == rt::projection::orthographic);
+    REQUIRE(flat.plane.has_value());
+    CHECK(flat.plane->l == cam.plane->l);
+    CHECK(flat.plane->r == cam.plane->r);
+    CHECK(flat.plane->b == cam.plane->b);
+    CHECK(flat.plane->t == cam.plane->t);
+}
+
+TEST_CASE("a bad camera statement is one line whose column counts in the statement's own text")
+{
+    std::string message;
+    try {
+        rt::parse_camera_statement("perspective eye 0 0 1 look_at 0 0 1", "--camera");
+    } catch (const rt::error& e) {
+        message = e.what();
+    }
+    CHECK(one_line(message));
+    CHECK(message.rfind("--camera:1:", 0) == 0);
+    CHECK(message.find("expected") != std::string::npos);
+    message.clear();
+    try {
+        rt::parse_camera_statement("perspective eye 0 0 x", "--camera");
+    } catch (const rt::error& e) {
+        message = e.what();
+    }
+    // 'x' is the 21st character of the argument text
+    CHECK(message == "--camera:1:21: expected a number for eye z, found 'x'");
 }

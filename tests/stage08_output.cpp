@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -35,6 +37,7 @@
 #include <rt/progress.hpp>
 #include <rt/random.hpp>
 #include <rt/ray.hpp>
+#include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/tonemap.hpp>
@@ -1052,4 +1055,63 @@ TEST_CASE("progress line and summary: percent, ETA = elapsed (total - done) / do
     rt::progress_bar bar(sink, true);
     bar.update(p);
     CHECK(sink.str().substr(0, 2) == "\r[");
+}
+
+TEST_CASE("camera statement numbers: the shortest text when it reads back exactly, else 17 digits")
+{
+    // The scene loader reads a number as a double and rounds it to rt::real;
+    // the text must survive that path exactly, whatever rt::real is.
+    auto read_back = [](const std::string& text) {
+        double parsed = 0;
+        const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), parsed);
+        if (status != std::errc() || end != text.data() + text.size())
+            return std::numeric_limits<rt::real>::quiet_NaN(); // equal to nothing
+        return rt::real(parsed);
+    };
+    // the stream's default 6 digits lose the camera: 1/3 comes back as 0.333333
+    std::ostringstream six_digits;
+    six_digits << rt::real(1) / rt::real(3);
+    CHECK(read_back(six_digits.str()) != rt::real(1) / rt::real(3));
+    CHECK(rt::detail::exact_number_text(rt::real(0)) == "0");
+    CHECK(rt::detail::exact_number_text(rt::real(40)) == "40");
+    CHECK(rt::detail::exact_number_text(rt::real(1.6)) == "1.6");     // the real nearest 1.6, written short
+    CHECK(rt::detail::exact_number_text(rt::real(-0.3)) == "-0.3");
+    // every bit pattern of a finite real, sampled: 20000 of them, plus the extremes
+    std::vector<rt::real> values = {std::numeric_limits<rt::real>::max(), std::numeric_limits<rt::real>::lowest(),
+                                    std::numeric_limits<rt::real>::min(), std::numeric_limits<rt::real>::denorm_min(),
+                                    rt::real(0.1), rt::real(1) / rt::real(3)};
+    rt::pcg32 rng(7, 11);
+    while (values.size() < 20006) {
+        rt::real value = 0;
+        if constexpr (sizeof(rt::real) == 4) {
+            const std::uint32_t bits = rng.next_u32();
+            std::memcpy(&value, &bits, sizeof value);
+        } else {
+            const std::uint64_t bits = (std::uint64_t(rng.next_u32()) << 32) | rng.next_u32();
+            std::memcpy(&value, &bits, sizeof value);
+        }
+        if (std::isfinite(value))
+            values.push_back(value);
+    }
+    int wrong = 0;
+    for (const rt::real value : values)
+        if (read_back(rt::detail::exact_number_text(value)) != value)
+            ++wrong;
+    CHECK(wrong == 0);
+}
+
+TEST_CASE("camera statement: the scene file's camera arguments, every field stated")
+{
+    rt::camera cam;
+    cam.eye = rt::vec3(0, rt::real(1.6), 6);
+    cam.look_at = rt::vec3(0, rt::real(0.7), 0);
+    cam.up = rt::vec3(0, 1, 0);
+    cam.fov_degrees = rt::real(40);
+    CHECK(rt::camera_statement(cam) == "perspective eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 fov 40 focal 1");
+    cam.fov_degrees.reset(); // the default field of view is left to the loader
+    CHECK(rt::camera_statement(cam) == "perspective eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 focal 1");
+    cam.kind = rt::projection::orthographic;
+    cam.plane = rt::window{-4, 4, -3, rt::real(2.5)};
+    cam.focal_distance = 2;
+    CHECK(rt::camera_statement(cam) == "orthographic eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 window -4 4 -3 2.5 focal 2");
 }

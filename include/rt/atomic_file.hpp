@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "error.hpp"
 
@@ -58,6 +59,22 @@ inline void check_writable(const std::filesystem::path& target)
                             "' not writable; choose another output path");
     }
     std::filesystem::remove(probe, ec);
+}
+
+/// Throws rt::error when `target` is the same file as one of `inputs`, however
+/// either path is spelled (std::filesystem::equivalent: same device and inode),
+/// so that writing an output can never destroy what a program read. Call it
+/// with check_writable, before any work.
+inline void check_not_input(const std::filesystem::path& target, const std::vector<std::filesystem::path>& inputs)
+{
+    std::error_code ec;
+    if (!std::filesystem::exists(target, ec))
+        return; // a new file cannot be one of the inputs, which exist
+    for (const std::filesystem::path& input : inputs)
+        if (std::filesystem::equivalent(target, input, ec))
+            throw error(source_location{target.string()},
+                        "expected an output path different from the input '" + shown_path(input.string()) +
+                            "', found the same file; writing it would destroy the input, so choose another -o");
 }
 
 /// Writes `target` atomically: `write(std::ostream&)` fills a temporary file,

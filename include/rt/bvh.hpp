@@ -74,8 +74,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -279,6 +281,7 @@ struct bvh_options {
     real traversal_cost = 1;          ///< C_trav: one node visit
     real intersection_cost = 1;       ///< C_isect: one primitive test
     int max_depth = 60;               ///< a node this deep in the binary tree becomes a leaf
+    int threads = 0;                  ///< threads for the build; 0: one per core (the tree is the same)
 };
 
 /// What a build produced.
@@ -334,14 +337,26 @@ struct binary_node {
 };
 
 /// The binned SAH build of a binary tree (see the top of this file).
+///
+/// Speed: one pass over a node's primitives bins them on all three axes at
+/// once; the two halves of the top of the tree are built on separate threads
+/// (bvh_options::threads), each into its own node array, and the arrays are
+/// joined in the order a single thread writes them, so the tree is the same
+/// whatever the number of threads.
 class binary_builder {
 public:
-    binary_builder(std::vector<build_item>& items, std::vector<binary_node>& nodes, const bvh_options& options,
-                   bvh_stats& stats)
-        : items_(items), nodes_(nodes), options_(options), stats_(stats),
-          bins_(std::size_t(std::max(2, std::min(options.bins, 256))))
+    binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads)
+        : items_(items), options_(options), spare_threads_(spare_threads),
+          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256))))
     {
+        for (int axis = 0; axis < 3; ++axis)
+            bins_[axis].resize(bin_count_);
+        right_cost_.resize(bin_count_);
+        right_box_.resize(bin_count_);
     }
+
+    std::vector<binary_node> nodes;
+    double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
 
     /// Builds the subtree of items [begin, end) inside `box`; returns it as a child.
     binary_child build(std::size_t begin, std::size_t end, const aabb& box, int depth)
@@ -375,7 +390,7 @@ public:
                 return leaf(begin, n, box, area);
             const int axis = best.axis;
             const real low = centroids.lo[axis];
-            const real scale = real(bins_.size()) / (centroids.hi[axis] - low);
+            const real scale = real(bin_count_) / (centroids.hi[axis] - low);
             const auto first_right = std::partition(
                 items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),
                 [&](const build_item& item) { return bin_of(item.centroid[axis], low, scale) < best.bin; });
@@ -384,13 +399,48 @@ public:
             right_box = best.right;
         }
 
-        const std::size_t index = nodes_.size();
-        nodes_.emplace_back();
-        stats_.sah_cost += double(options_.traversal_cost) * double(area);
-        const binary_child left = build(begin, middle, left_box, depth + 1);
-        const binary_child right = build(middle, end, right_box, depth + 1);
-        nodes_[index].side[0] = left;
-        nodes_[index].side[1] = right;
+        const std::size_t index = nodes.size();
+        nodes.emplace_back();
+        sah_cost += double(options_.traversal_cost) * double(area);
+        binary_child left, right;
+        if (spare_threads_ > 0 && n >= parallel_threshold) {
+            // the right half on a thread of its own, with half of the spare threads
+            const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
+            spare_threads_ -= for_right + 1;
+            binary_builder right_builder(items_, options_, for_right);
+            std::exception_ptr failure;
+            std::thread worker([&] {
+                try {
+                    right = right_builder.build(middle, end, right_box, depth + 1);
+                } catch (...) {
+                    failure = std::current_exception();
+                }
+            });
+            try {
+                left = build(begin, middle, left_box, depth + 1);
+            } catch (...) {
+                worker.join();
+                throw;
+            }
+            worker.join();
+            if (failure)
+                std::rethrow_exception(failure);
+            // join the arrays: the right subtree's nodes follow the left subtree's
+            const std::uint32_t offset = std::uint32_t(nodes.size());
+            for (binary_node& node : right_builder.nodes)
+                for (binary_child& side : node.side)
+                    if (side.count == 0)
+                        side.index += offset;
+            if (right.count == 0)
+                right.index += offset;
+            nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
+            sah_cost += right_builder.sah_cost;
+        } else {
+            left = build(begin, middle, left_box, depth + 1);
+            right = build(middle, end, right_box, depth + 1);
+        }
+        nodes[index].side[0] = left;
+        nodes[index].side[1] = right;
         binary_child inner;
         inner.box = box;
         inner.index = std::uint32_t(index);
@@ -398,6 +448,9 @@ public:
     }
 
 private:
+    /// Below this many primitives a subtree is not worth a thread.
+    static constexpr std::size_t parallel_threshold = 4096;
+
     struct bin {
         aabb box;
         std::size_t count = 0;
@@ -413,42 +466,46 @@ private:
     std::size_t bin_of(real centroid, real low, real scale) const
     {
         const real slot = (centroid - low) * scale;
-        return std::min(bins_.size() - 1, std::size_t(slot > 0 ? slot : real(0)));
+        return std::min(bin_count_ - 1, std::size_t(slot > 0 ? slot : real(0)));
     }
 
     split find_split(std::size_t begin, std::size_t end, const aabb& centroids)
     {
-        split best;
-        const std::size_t count = bins_.size();
+        real low[3], scale[3];
         for (int axis = 0; axis < 3; ++axis) {
-            const real low = centroids.lo[axis];
-            const real extent = centroids.hi[axis] - low;
-            if (!(extent > 0))
-                continue;
-            const real scale = real(count) / extent;
-            for (bin& b : bins_)
+            low[axis] = centroids.lo[axis];
+            const real extent = centroids.hi[axis] - low[axis];
+            scale[axis] = extent > 0 ? real(bin_count_) / extent : real(0); // 0: all in bin 0, never split
+            for (bin& b : bins_[axis])
                 b = bin{};
-            for (std::size_t i = begin; i < end; ++i) {
-                bin& b = bins_[bin_of(items_[i].centroid[axis], low, scale)];
-                b.box.grow(items_[i].box);
+        }
+        for (std::size_t i = begin; i < end; ++i) { // one pass, three axes
+            const build_item& item = items_[i];
+            for (int axis = 0; axis < 3; ++axis) {
+                bin& b = bins_[axis][bin_of(item.centroid[axis], low[axis], scale[axis])];
+                b.box.grow(item.box);
                 ++b.count;
             }
+        }
+        split best;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (scale[axis] == 0)
+                continue;
+            const std::vector<bin>& bins = bins_[axis];
             // sweep from the right: right_cost_[s] = A_R N_R for the split before bin s
-            right_cost_.assign(count, real(0));
-            right_box_.assign(count, aabb{});
             aabb accumulated;
             std::size_t on_right = 0;
-            for (std::size_t s = count - 1; s > 0; --s) {
-                accumulated.grow(bins_[s].box);
-                on_right += bins_[s].count;
+            for (std::size_t s = bin_count_ - 1; s > 0; --s) {
+                accumulated.grow(bins[s].box);
+                on_right += bins[s].count;
                 right_box_[s] = accumulated;
                 right_cost_[s] = half_area(accumulated) * real(on_right);
             }
             aabb left;
             std::size_t on_left = 0;
-            for (std::size_t s = 1; s < count; ++s) {
-                left.grow(bins_[s - 1].box);
-                on_left += bins_[s - 1].count;
+            for (std::size_t s = 1; s < bin_count_; ++s) {
+                left.grow(bins[s - 1].box);
+                on_left += bins[s - 1].count;
                 if (on_left == 0 || on_left == end - begin)
                     continue;
                 const real cost = half_area(left) * real(on_left) + right_cost_[s];
@@ -466,7 +523,7 @@ private:
 
     binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)
     {
-        stats_.sah_cost += double(options_.intersection_cost) * double(area) * double(n);
+        sah_cost += double(options_.intersection_cost) * double(area) * double(n);
         binary_child c;
         c.box = box;
         c.index = std::uint32_t(begin);
@@ -475,10 +532,10 @@ private:
     }
 
     std::vector<build_item>& items_;
-    std::vector<binary_node>& nodes_;
     const bvh_options& options_;
-    bvh_stats& stats_;
-    std::vector<bin> bins_;
+    int spare_threads_;
+    std::size_t bin_count_;
+    std::vector<bin> bins_[3];
     std::vector<real> right_cost_;
     std::vector<aabb> right_box_;
 };
@@ -664,12 +721,13 @@ public:
             items[i].index = std::uint32_t(i);
             scene_box.grow(items[i].box);
         }
-        std::vector<detail::binary_node> binary;
-        binary.reserve(prims_.size());
-        detail::binary_builder builder(items, binary, used, stats_);
+        const int threads = used.threads > 0 ? used.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+        detail::binary_builder builder(items, used, threads - 1);
+        builder.nodes.reserve(prims_.size());
         const detail::binary_child root = builder.build(0, items.size(), scene_box, 0);
+        const std::vector<detail::binary_node>& binary = builder.nodes;
         const real root_area = detail::half_area(scene_box);
-        stats_.sah_cost = root_area > 0 ? stats_.sah_cost / double(root_area) : 0;
+        stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;
         stats_.binary_nodes = binary.size();
 
         nodes_.reserve(binary.size() / 2 + 1);
@@ -705,6 +763,9 @@ public:
     const std::vector<bvh_node>& nodes() const { return nodes_; }
     const std::vector<packed_primitive>& primitives() const { return prims_; }
     const bvh_stats& stats() const { return stats_; }
+
+    /// Whether the node test runs in SSE registers (x86-64 and rt::real = float).
+    static constexpr bool uses_sse = detail::bvh_uses_sse;
 
     /// The deepest binary tree built; a 4-wide node pushes at most 3 children,
     /// so the traversal stack needs 3 entries per level.
@@ -757,7 +818,7 @@ private:
                     for (int c = 0; c < 4; ++c)
                         if (mask & (1 << c))
                             hits[n++] = entry{node.child[c], node.count[c], tnear[c]};
-                    for (int i = 1; i < n; ++i)
+                    for (int i = 1; i < n && !any_hit; ++i) // any hit: no order needed
                         for (int j = i; j > 0 && hits[j].tnear < hits[j - 1].tnear; --j) {
                             const entry swap = hits[j];
                             hits[j] = hits[j - 1];

@@ -6,6 +6,8 @@
 // what a student kit's unfinished exercise throws.
 #pragma once
 
+#include <cstddef>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -19,16 +21,44 @@ struct source_location {
     int column = 0;
 };
 
+/// A file name as a message shows it: control characters become '?', and a
+/// path longer than 160 bytes keeps its last 160 or fewer (the file name is at
+/// the end; the cut falls between UTF-8 characters), so that a message stays one
+/// readable line whatever a file names.
+inline std::string shown_path(const std::string& path)
+{
+    const std::size_t keep = 160;
+    std::size_t from = path.size() > keep ? path.size() - keep : 0;
+    while (from > 0 && from < path.size() && (static_cast<unsigned char>(path[from]) & 0xC0) == 0x80)
+        ++from; // start on a whole UTF-8 character, not inside one
+    std::string shown = from > 0 ? "..." + path.substr(from) : path;
+    for (char& c : shown)
+        if (static_cast<unsigned char>(c) < 32 || c == 127)
+            c = '?';
+    return shown;
+}
+
 /// "file:line:col" (or "file:line", or "file"), the prefix of every message.
 inline std::string to_string(const source_location& where)
 {
-    std::string text = where.file.empty() ? std::string("<input>") : where.file;
+    std::string text = where.file.empty() ? std::string("<input>") : shown_path(where.file);
     if (where.line > 0) {
         text += ':' + std::to_string(where.line);
         if (where.column > 0)
             text += ':' + std::to_string(where.column);
     }
     return text;
+}
+
+/// Text from an input (a name, a path) made safe to print in a one-line
+/// message: bytes that are not printable ASCII become '?', and anything past
+/// `limit` characters is cut with "...".
+inline std::string printable(const std::string& text, std::size_t limit = 200)
+{
+    std::string shown;
+    for (char c : text.substr(0, limit))
+        shown += (c >= 32 && c < 127) ? c : '?';
+    return text.size() > limit ? shown + "..." : shown;
 }
 
 /// A bad input or a failed operation: the message is one line, ready to print.

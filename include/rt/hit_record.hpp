@@ -13,7 +13,7 @@
 namespace rt {
 
 struct hit_record {
-    real t = 0;                ///< ray parameter of the hit: point = p + t d
+    real t = 0;                ///< ray parameter of the hit: point = p + t d, up to rounding
     vec3 point{0};             ///< the hit point
     vec3 point_error{0};       ///< per axis, a bound on |point - the true surface point| (0: not known)
     vec3 geometric_normal{0};  ///< unit normal of the true surface, facing the incoming ray

@@ -118,12 +118,24 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
                           "something else", "is this a PFM file written by rt?");
     in.get(); // the single whitespace byte after the scale
     const bool little = scale < 0;
-    image img(width, height);
-    std::vector<unsigned char> row(std::size_t(width) * 12);
-    for (int y = height - 1; y >= 0; --y) {
-        if (!in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size())))
+    // Read the pixel bytes before allocating the image, in chunks, so that a
+    // header that claims more pixels than the file holds costs no more memory
+    // than the file (a 30-byte file could otherwise ask for 3 GB).
+    const std::size_t row_size = std::size_t(width) * 12;
+    const std::size_t total = row_size * std::size_t(height);
+    std::vector<unsigned char> bytes;
+    std::vector<char> chunk(std::size_t(1) << 16);
+    while (bytes.size() < total) {
+        const std::size_t wanted = std::min(chunk.size(), total - bytes.size());
+        in.read(chunk.data(), std::streamsize(wanted));
+        bytes.insert(bytes.end(), chunk.begin(), chunk.begin() + in.gcount());
+        if (std::size_t(in.gcount()) < wanted)
             throw error(source_location{name}, "expected " + std::to_string(width) + "x" +
                                                    std::to_string(height) + " pixels, found a truncated file");
+    }
+    image img(width, height);
+    for (int y = height - 1; y >= 0; --y) {
+        const unsigned char* row = &bytes[std::size_t(height - 1 - y) * row_size];
         for (int x = 0; x < width; ++x)
             for (int channel = 0; channel < 3; ++channel) {
                 const unsigned char* slot = &row[(std::size_t(x) * 3 + std::size_t(channel)) * 4];
@@ -150,6 +162,10 @@ inline std::string image_format_of(const std::filesystem::path& path)
                         "'; name the output file with one of them");
     return extension;
 }
+
+/// Throws the error save_image would throw for `path`'s extension, unless it is
+/// one save_image writes (.png, .ppm, .pfm, in any case).
+inline void check_image_path(const std::filesystem::path& path) { image_format_of(path); }
 
 /// Throws rt::error unless `path` names an image format rt writes and a file
 /// can be created there: call it before a long render, not after.

@@ -117,9 +117,13 @@ enum class accelerator_kind {
     automatic  ///< "auto": flat below flat_list_crossover primitives, else bvh
 };
 
-/// Below this many primitives the flat list is faster than the BVH; measured
-/// with `stage04_triangle --crossover` (docs/stages/04-triangle.md).
-constexpr std::size_t flat_list_crossover = 8;
+/// Below this many primitives the flat list is faster than the BVH. Measured
+/// with `stage04_triangle --crossover` (docs/stages/04-triangle.md has the
+/// table): random triangles and spheres, small (most rays miss them) and large
+/// (most rays hit one); from 6 primitives on the BVH was faster in all four
+/// cases, below it the flat list was faster in at least one (large triangles
+/// and spheres: every ray that hits pays a box test on top of the primitive).
+constexpr std::size_t flat_list_crossover = 6;
 
 inline const char* to_string(accelerator_kind kind)
 {

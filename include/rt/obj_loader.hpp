@@ -95,7 +95,7 @@ public:
 
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : "'" + peek_word() + "'", hint);
+        return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
     }
 
     /// A finite number, at the precision of rt::real.
@@ -151,9 +151,9 @@ public:
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
                 if (status != std::errc() || end != slash || c.index[part] == 0)
                     throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
-                                      "'" + std::string(p, slash) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
             } else if (part == 0) {
-                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + std::string(p, stop) + "'",
+                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + printable(std::string(p, stop), 24) + "'",
                                   "a corner is v, v/vt, v//vn or v/vt/vn");
             }
             if (slash == stop)
@@ -220,13 +220,17 @@ void for_each_line(const std::string& text, const std::string& file, Each&& each
 inline std::string read_text(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes,
                              const source_location& named_at)
 {
-    const std::string name = path.string();
+    const std::string name = printable(path.string());
     std::error_code ec;
     const source_location at = named_at.file.empty() ? source_location{name} : named_at;
     if (std::filesystem::is_directory(path, ec))
         throw error(at, "expected " + what + " file, found a folder '" + name + "'; name the file itself");
     if (!std::filesystem::exists(path, ec))
         throw error(at, "expected " + what + " file, found no such file '" + name + "'; check the path");
+    // a device, pipe or socket could block or never end (/dev/zero): read regular files only
+    if (!std::filesystem::is_regular_file(path, ec))
+        throw error(at, "expected " + what + " file, found a device, pipe or socket '" + name +
+                            "'; name a regular file");
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_bytes)
         throw error(at, "expected " + what + " file of at most " + std::to_string(max_bytes) + " bytes, found " +
@@ -277,7 +281,7 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
         if (!known)
             return; // Ke, Ni, d, Tr, maps ...: not used by rt
         if (entries.empty())
-            throw parse_error(keyword_at, "'newmtl name' before '" + keyword + "'", "'" + keyword + "' first",
+            throw parse_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
                               "every material starts with newmtl");
         mtl_entry& entry = entries.back();
         if (colour) {
@@ -451,7 +455,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                                               [&](const mtl_entry& m) { return m.value.name == wanted; });
             if (!declared) {
                 if (!any_library)
-                    throw parse_error(at, "a material declared in a material library", "'" + wanted + "'",
+                    throw parse_error(at, "a material declared in a material library", "'" + printable(wanted, 24) + "'",
                                       "the file has no 'mtllib' line before this one; add one, or delete the usemtl lines");
                 std::vector<std::string> known;
                 for (const mtl_entry& m : materials)
@@ -459,8 +463,8 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 std::string list;
                 for (const std::string& k : known)
                     list += (list.empty() ? "" : ", ") + k;
-                throw parse_error(at, "a material declared in the material library", "'" + wanted + "'",
-                                  list.empty() ? "the library declares none" : "known: " + list);
+                throw parse_error(at, "a material declared in the material library", "'" + printable(wanted, 24) + "'",
+                                  list.empty() ? "the library declares none" : "known: " + printable(list, 200));
             }
         }
         // any other statement (o, g, s, comments, curves ...) is not used by rt
@@ -497,11 +501,8 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     std::istream stream(&buffer);
     detail::mtl_names_reader names(mtl);
     if (!tinyobj::LoadObj(&attrib, &groups, &tiny_materials, &warning, &failure, &stream, &names, true, false)) {
-        std::string message = failure;
-        for (char& c : message)
-            if (c == '\n' || c == '\r')
-                c = ' ';
-        throw error(source_location{name}, "expected a valid OBJ file, found: " + message);
+        // tinyobjloader's message may quote the file: printable, and short
+        throw error(source_location{name}, "expected a valid OBJ file, found: " + printable(failure, 200));
     }
 
     obj_result result;

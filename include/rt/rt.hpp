@@ -23,6 +23,7 @@
 #include "ray.hpp"
 #include "ray_image.hpp"
 #include "raytracer.hpp"
+#include "render_setup.hpp"
 #include "renderer.hpp"
 #include "rounding.hpp"
 #include "sampler.hpp"

@@ -15,11 +15,13 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <istream>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <system_error>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "camera.hpp"
@@ -62,22 +64,6 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b)
     return row[b.size()];
 }
 
-/// "did you mean 'x'?" for the known word closest to `word`, or a list of them.
-inline std::string nearest_hint(const std::string& word, const std::vector<std::string>& known)
-{
-    if (known.empty())
-        return "none is declared yet";
-    const auto best = std::min_element(known.begin(), known.end(), [&](const std::string& x, const std::string& y) {
-        return edit_distance(word, x) < edit_distance(word, y);
-    });
-    if (edit_distance(word, *best) <= std::max<std::size_t>(2, word.size() / 3))
-        return "did you mean '" + *best + "'?";
-    std::string list;
-    for (const std::string& name : known)
-        list += (list.empty() ? "" : ", ") + name;
-    return "known: " + list;
-}
-
 /// Shortens what a file contained for an error message, so a message never
 /// dumps file contents: at most 24 printable characters, quoted.
 inline std::string found_text(const std::string& text)
@@ -86,6 +72,35 @@ inline std::string found_text(const std::string& text)
     for (char c : text.substr(0, 24))
         shown += (c >= 32 && c < 127) ? c : '?';
     return "'" + shown + (text.size() > 24 ? "...'" : "'");
+}
+
+/// "did you mean 'x'?" for the known word closest to `word`, or a short list of
+/// them. The work and the message are bounded whatever the file declares: the
+/// distance compares the first 64 characters of each word (a typo is found
+/// there), and the list shows at most 8 names, each shortened by found_text.
+inline std::string nearest_hint(const std::string& word, const std::vector<std::string>& known)
+{
+    if (known.empty())
+        return "none is declared yet";
+    const std::size_t compared = 64;
+    const std::string prefix = word.substr(0, compared);
+    std::size_t best = 0, best_distance = std::numeric_limits<std::size_t>::max();
+    for (std::size_t i = 0; i < known.size(); ++i) {
+        const std::size_t distance = edit_distance(prefix, known[i].substr(0, compared));
+        if (distance < best_distance) {
+            best = i;
+            best_distance = distance;
+        }
+    }
+    if (best_distance <= std::max<std::size_t>(2, prefix.size() / 3))
+        return "did you mean " + found_text(known[best]) + "?";
+    const std::size_t listed = 8;
+    std::string list;
+    for (std::size_t i = 0; i < known.size() && i < listed; ++i)
+        list += (list.empty() ? "" : ", ") + found_text(known[i]);
+    if (known.size() > listed)
+        list += " and " + std::to_string(known.size() - listed) + " more";
+    return "known: " + list;
 }
 
 /// One statement of a scene file, read left to right. Each reader names what it
@@ -143,7 +158,8 @@ public:
         return real(value);
     }
 
-    int integer(const std::string& what, int low, int high)
+    /// A whole number in [low, high]; `limit_hint` says how to raise `high`.
+    int integer(const std::string& what, int low, int high, const std::string& limit_hint = {})
     {
         if (done())
             throw unexpected("a whole number for " + what);
@@ -153,7 +169,8 @@ public:
         if (status != std::errc() || end != text.data() + text.size())
             throw unexpected("a whole number for " + what);
         if (value < low || value > high)
-            throw unexpected(what + " between " + std::to_string(low) + " and " + std::to_string(high));
+            throw unexpected(what + " between " + std::to_string(low) + " and " + std::to_string(high),
+                             value > high ? limit_hint : std::string());
         ++next_;
         return int(value);
     }
@@ -287,8 +304,53 @@ inline void parse_camera(statement& line, camera& cam)
 
 namespace detail {
 
+/// The length of the well-formed UTF-8 sequence that starts at text[i], or 0
+/// when the bytes there are not one. The Unicode Standard, Version 15.0,
+/// sec. 3.9, Table 3-7 "Well-Formed UTF-8 Byte Sequences" (also RFC 3629, sec. 4).
+inline std::size_t utf8_length(const std::string& text, std::size_t i)
+{
+    const auto byte = [&](std::size_t k) {
+        return k < text.size() ? unsigned(static_cast<unsigned char>(text[k])) : 0u;
+    };
+    const auto in = [](unsigned b, unsigned low, unsigned high) { return b >= low && b <= high; };
+    const unsigned b0 = byte(i), b1 = byte(i + 1), b2 = byte(i + 2), b3 = byte(i + 3);
+    if (b0 < 0x80)
+        return 1;
+    if (in(b0, 0xC2, 0xDF))
+        return in(b1, 0x80, 0xBF) ? 2 : 0;
+    if (b0 == 0xE0)
+        return in(b1, 0xA0, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (in(b0, 0xE1, 0xEC) || in(b0, 0xEE, 0xEF))
+        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (b0 == 0xED)
+        return in(b1, 0x80, 0x9F) && in(b2, 0x80, 0xBF) ? 3 : 0;
+    if (b0 == 0xF0)
+        return in(b1, 0x90, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    if (in(b0, 0xF1, 0xF3))
+        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    if (b0 == 0xF4)
+        return in(b1, 0x80, 0x8F) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
+    return 0;
+}
+
+/// Requires that text[from, to) is text: printable ASCII, tabs, or well-formed
+/// UTF-8 (for names and paths in other languages); control bytes and other
+/// bytes mean the file is not a scene file.
+inline void check_text(const std::string& text, std::size_t from, std::size_t to, const source_location& where)
+{
+    for (std::size_t i = from; i < to;) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        const std::size_t length = (c < 32 && c != '\t' && c != '\r') || c == 127 ? 0 : utf8_length(text, i);
+        if (length == 0 || i + length > to)
+            throw parse_error({where.file, where.line, int(i) + 1}, "plain text (ASCII or UTF-8)",
+                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
+        i += length;
+    }
+}
+
 /// Splits one line into tokens: words separated by blanks, "quoted strings"
-/// (for paths with spaces), and a '#' that starts a comment.
+/// (for paths with spaces), and a '#' that starts a comment (which may hold
+/// anything but is not read).
 inline std::vector<token> tokenize(const std::string& text, const source_location& where)
 {
     std::vector<token> tokens;
@@ -299,23 +361,55 @@ inline std::vector<token> tokenize(const std::string& text, const source_locatio
             ++i;
         } else if (c == '#') {
             break;
-        } else if (c < 32 || c >= 127) {
-            throw parse_error({where.file, where.line, int(i) + 1}, "plain text",
-                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
         } else if (c == '"') {
             const std::size_t close = text.find('"', i + 1);
             if (close == std::string::npos)
                 throw parse_error({where.file, where.line, int(i) + 1}, "a closing '\"'", "the end of the line");
+            check_text(text, i + 1, close, where);
             tokens.push_back({text.substr(i + 1, close - i - 1), int(i) + 1});
             i = close + 1;
         } else {
             const std::size_t start = i;
             while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#')
                 ++i;
+            check_text(text, start, i, where);
             tokens.push_back({text.substr(start, i - start), int(start) + 1});
         }
     }
     return tokens;
+}
+
+/// Reads the next line of `in` into `text`, without its line break, but never
+/// more than `limit` + 1 characters, so that a file without line breaks cannot
+/// exhaust memory (the caller rejects a line longer than `limit`). Returns
+/// false at the end of the input, as std::getline does.
+inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t limit)
+{
+    text.clear();
+    char c = 0;
+    while (in.get(c)) {
+        if (c == '\n')
+            return true;
+        text += c;
+        if (text.size() > limit)
+            return true;
+    }
+    return !text.empty();
+}
+
+/// Where a scene file's mesh path leads: relative to the scene file's folder
+/// (never to the working directory), or as written when absolute.
+inline std::filesystem::path mesh_path(const std::filesystem::path& folder, const std::filesystem::path& written)
+{
+    return written.is_absolute() ? written : folder / written;
+}
+
+/// The folder a scene file's relative paths start from: its parent, or the
+/// empty path (the working directory, which messages then leave out) for a
+/// scene file named without a folder.
+inline std::filesystem::path scene_folder(const std::filesystem::path& scene_file)
+{
+    return scene_file.parent_path();
 }
 
 inline int find_material(const scene& s, statement& line)
@@ -349,7 +443,7 @@ public:
         const source_location where{file_, number, 1};
         if (text.size() > options_.max_line_length)
             throw parse_error(where, "a line of at most " + std::to_string(options_.max_line_length) + " characters",
-                              std::to_string(text.size()), "raise load_options::max_line_length");
+                              "a longer one", "the limit is load_options::max_line_length; raise it if you mean it");
         std::vector<token> tokens = tokenize(text, where);
         if (tokens.empty())
             return;
@@ -394,9 +488,11 @@ private:
         else if (keyword == "background")
             result_.background = line.rgb("background colour");
         else if (keyword == "samples")
-            result_.samples = line.integer("samples per pixel", 1, options_.max_samples);
+            result_.samples = line.integer("samples per pixel", 1, options_.max_samples,
+                                           "the limit is load_options::max_samples; raise it if you mean it");
         else if (keyword == "max_depth")
-            result_.max_depth = line.integer("max_depth", 0, options_.max_depth);
+            result_.max_depth = line.integer("max_depth", 0, options_.max_depth,
+                                             "the limit is load_options::max_depth; raise it if you mean it");
         else
             throw parse_error(line.line_start(), "a keyword", found_text(keyword), nearest_hint(keyword, keywords()));
     }
@@ -499,14 +595,23 @@ private:
             } else
                 translate = line.vector("translate");
         });
-        const std::filesystem::path path = relative.is_absolute() ? relative : folder_ / relative;
+        const std::filesystem::path path = mesh_path(folder_, relative);
+        obj_limits limits = options_.obj; // one budget of triangles for all the scene's meshes
+        limits.max_triangles -= triangles_;
         obj_result loaded;
         try {
-            loaded = load_obj(path, options_.obj);
+            loaded = load_obj(path, limits);
         } catch (const error& e) {
             throw parse_error(where, "a loadable OBJ mesh", "an error", e.what());
         }
         mesh& m = loaded.geometry;
+        if (m.triangles.empty())
+            throw parse_error(where, "a mesh with at least one triangle",
+                              m.dropped_degenerate > 0 ? "only " + std::to_string(m.dropped_degenerate) +
+                                                             " degenerate (zero-area) triangle(s)"
+                                                       : "no faces",
+                              "check the OBJ file " + found_text(relative.string()));
+        triangles_ += m.triangles.size();
         m.source = relative.string();
         for (vec3& p : m.positions)
             p = p * scale + translate;
@@ -556,6 +661,7 @@ private:
     bool seen_camera_ = false;
     bool seen_image_ = false;
     int statements_ = 0;
+    std::size_t triangles_ = 0; ///< triangles of the meshes read so far
 };
 
 inline scene load_scene_stream(std::istream& in, const std::string& name, const std::filesystem::path& folder,
@@ -564,8 +670,12 @@ inline scene load_scene_stream(std::istream& in, const std::string& name, const 
     scene_reader reader(name, folder, options);
     std::string text;
     int number = 0;
-    while (std::getline(in, text))
+    while (read_bounded_line(in, text, options.max_line_length)) {
+        if (number == std::numeric_limits<int>::max())
+            throw error(source_location{name, number}, "expected at most " + std::to_string(number) +
+                                                           " lines, found more; split the scene");
         reader.read_line(text, ++number);
+    }
     if (in.bad())
         throw error(source_location{name, number}, "reading failed; is the file complete?");
     return reader.finish(number);
@@ -588,13 +698,27 @@ inline scene load_scene(const std::filesystem::path& path, const load_options& o
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw error(source_location{name}, "expected a scene file, found a folder; name the .scene file itself");
+    if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+        throw error(source_location{name}, "expected a scene file, found a device, pipe or socket; "
+                                           "name a .scene file (a special file could block or never end)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw error(source_location{name}, std::filesystem::exists(path, ec)
                                                ? "expected a readable scene file, found one that cannot be opened; check its permissions"
                                                : "expected a scene file, found no such file; check the path");
-    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    return detail::load_scene_stream(in, name, folder, options);
+    return detail::load_scene_stream(in, name, detail::scene_folder(path), options);
+}
+
+/// The files load_scene(path) read to make `s`: the scene file and the OBJ file
+/// of each mesh. A program that writes an output checks it against them first
+/// (rt::check_not_input), so a mistyped command line cannot overwrite an input.
+inline std::vector<std::filesystem::path> input_files(const std::filesystem::path& path, const scene& s)
+{
+    std::vector<std::filesystem::path> files{path};
+    for (const shape& item : s.shapes)
+        if (const mesh* m = std::get_if<mesh>(&item))
+            files.push_back(detail::mesh_path(detail::scene_folder(path), m->source));
+    return files;
 }
 
 } // namespace rt

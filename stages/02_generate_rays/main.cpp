@@ -50,6 +50,7 @@ int main(int argc, char** argv)
         if (scene_path.empty())
             throw rt::error("expected a scene file, found none; see --help");
         rt::check_writable(output); // fail before the work, not after it
+        rt::check_image_path(output);
 
         rt::scene s = rt::load_scene(scene_path);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
@@ -60,6 +61,7 @@ int main(int argc, char** argv)
             s.cam.kind = rt::projection::perspective;
             s.cam.plane.reset();
         }
+        rt::check_not_input(output, rt::input_files(scene_path, s)); // nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
         rt::save_image(output, rt::render_ray_directions(gen), 1.0f);
         std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)\n";

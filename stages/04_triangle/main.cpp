@@ -10,12 +10,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <random>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <rt/camera.hpp>
@@ -29,14 +31,15 @@
 namespace {
 
 const char* usage =
-    "usage: stage04_triangle INPUT [-o OUTPUT] [--mode normals|depth] [--size WxH]\n"
+    "usage: stage04_triangle INPUT [-o OUTPUT] [--mode normals|geometric|depth] [--size WxH]\n"
     "                        [--accel flat|bvh|auto] [--view X Y Z] [--repeat N]\n"
     "       stage04_triangle --crossover\n"
     "Renders INPUT, an OBJ mesh (seen from outside, framed by its bounds) or a .scene\n"
     "file (its camera and shapes), one ray per pixel, and prints the build time, the\n"
     "BVH's size and the rays per second of one thread.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default triangle.png); a .pfm of depth holds t\n"
-    "  --mode M        normals: (n + 1)/2 of the shading normal (default); depth: near is white\n"
+    "  --mode M        normals: (n + 1)/2 of the shading normal (default); geometric: of the\n"
+    "                  geometric normal; depth: distance, near white, far grey (.pfm: the distance)\n"
     "  --size WxH      image size (default 800x600 for a mesh, the scene's own for a scene)\n"
     "  --accel A       flat, bvh or auto (default auto)\n"
     "  --view X Y Z    direction from the mesh's centre to the camera (default 0 0 1)\n"
@@ -48,6 +51,14 @@ using clock_type = std::chrono::steady_clock;
 double seconds_since(clock_type::time_point start)
 {
     return std::chrono::duration<double>(clock_type::now() - start).count();
+}
+
+/// The processor time this program has used: unlike the wall clock, it does
+/// not count the time other programs on a busy machine took the core away.
+/// Tracing runs on one thread, so this is that thread's time.
+double cpu_seconds()
+{
+    return double(std::clock()) / CLOCKS_PER_SEC;
 }
 
 int parse_int(const std::string& text, const std::string& what, int low, int high)
@@ -118,16 +129,18 @@ struct render_result {
     rt::image picture;
     std::vector<float> depth; // t per pixel (top row first), 0 where nothing is hit
     std::size_t hits = 0;
-    double seconds = 0;
+    double seconds = 0;     ///< wall clock
+    double cpu_seconds = 0; ///< processor time
 };
 
 /// Traces one primary ray per pixel, one thread, and times the tracing.
-render_result trace(const rt::accelerator& world, const rt::ray_generator& gen)
+render_result trace(const rt::accelerator& world, const rt::ray_generator& gen, bool geometric)
 {
     render_result out;
     out.depth.assign(std::size_t(gen.nx) * std::size_t(gen.ny), 0.0f);
     std::vector<rt::vec3> normals(out.depth.size(), rt::vec3(0));
     const auto start = clock_type::now();
+    const double cpu_start = cpu_seconds();
     for (int j = 0; j < gen.ny; ++j) {
         for (int i = 0; i < gen.nx; ++i) {
             const rt::ray r = rt::pixel_ray(gen, i, j);
@@ -135,12 +148,13 @@ render_result trace(const rt::accelerator& world, const rt::ray_generator& gen)
             if (world.closest_hit(r, 0, rt::infinity, rec)) {
                 const std::size_t at = std::size_t(gen.ny - 1 - j) * std::size_t(gen.nx) + std::size_t(i);
                 out.depth[at] = float(rec.t * glm::length(r.direction));
-                normals[at] = rec.normal;
+                normals[at] = geometric ? rec.geometric_normal : rec.normal;
                 ++out.hits;
             }
         }
     }
     out.seconds = seconds_since(start);
+    out.cpu_seconds = cpu_seconds() - cpu_start;
     out.picture = rt::image(gen.nx, gen.ny);
     for (std::size_t k = 0; k < normals.size(); ++k)
         if (out.depth[k] > 0)
@@ -172,81 +186,94 @@ rt::image depth_image(const std::vector<float>& depth, int width, int height, bo
 
 // --- the crossover experiment --------------------------------------------------
 
-/// n random triangles (or spheres) in the unit cube, each about as large as
-/// the cube's volume shared among them allows.
-rt::scene random_scene(std::size_t n, bool spheres, std::mt19937& random)
+/// n random triangles (or spheres) in the unit cube; `size` is their extent
+/// times the cube root of n, so they fill the cube alike for every n.
+rt::scene random_scene(std::size_t n, bool spheres, rt::real size, std::mt19937& random)
 {
     std::uniform_real_distribution<rt::real> unit(0, 1);
-    const rt::real size = rt::real(0.5) / std::cbrt(rt::real(n));
+    const rt::real extent = size / std::cbrt(rt::real(n));
     rt::scene s;
     for (std::size_t k = 0; k < n; ++k) {
         const rt::vec3 c(unit(random), unit(random), unit(random));
         if (spheres) {
             rt::sphere ball;
             ball.center = c;
-            ball.radius = size * rt::real(0.5);
+            ball.radius = extent * rt::real(0.5);
             s.shapes.emplace_back(ball);
         } else {
-            auto corner = [&] { return c + size * (rt::vec3(unit(random), unit(random), unit(random)) - rt::real(0.5)); };
+            auto corner = [&] {
+                return c + extent * (rt::vec3(unit(random), unit(random), unit(random)) - rt::real(0.5));
+            };
             s.shapes.emplace_back(rt::triangle{corner(), corner(), corner(), -1});
         }
     }
     return s;
 }
 
-/// Nanoseconds per closest-hit query over `rays`, the best of a few runs.
+/// Nanoseconds of processor time per closest-hit query over `rays`, the best of a few runs.
 double time_per_ray(const rt::accelerator& world, const std::vector<rt::ray>& rays, std::size_t& hits)
 {
     double best = std::numeric_limits<double>::infinity();
     for (int run = 0; run < 5; ++run) {
         std::size_t count = 0;
-        const auto start = clock_type::now();
+        const double start = cpu_seconds();
         for (const rt::ray& r : rays) {
             rt::hit_record rec;
             count += world.closest_hit(r, 0, rt::infinity, rec) ? 1 : 0;
         }
-        best = std::min(best, seconds_since(start));
+        best = std::min(best, cpu_seconds() - start);
         hits = count;
     }
     return best * 1e9 / double(rays.size());
 }
 
+/// The experiment behind rt::flat_list_crossover: for n = 1 ... 256 random
+/// triangles or spheres, small (most rays miss them) or large (most rays hit
+/// one), the time per ray of the flat list and of the BVH.
 int crossover()
 {
     std::mt19937 random(2024);
     std::uniform_real_distribution<rt::real> unit(0, 1);
     std::vector<rt::ray> rays(20000);
-    for (rt::ray& r : rays) { // from a point around the cube to a point inside it
-        const rt::real a = 6.2831853f * unit(random), z = 2 * unit(random) - 1;
+    for (rt::ray& r : rays) { // from a point on a sphere around the cube to a point inside it
+        const rt::real a = rt::real(6.2831853) * unit(random), z = 2 * unit(random) - 1;
         const rt::real ring = std::sqrt(1 - z * z);
         r.origin = rt::vec3(0.5) + rt::real(2) * rt::vec3(ring * std::cos(a), ring * std::sin(a), z);
         r.direction = rt::vec3(unit(random), unit(random), unit(random)) - r.origin;
     }
-    std::cout << "nanoseconds per closest-hit ray, one thread (" << rays.size()
-              << " rays into the unit cube; best of 5)\n"
-              << "  n   triangles: flat     bvh   spheres: flat     bvh\n";
-    std::size_t first_tri = 0, first_sphere = 0;
-    for (std::size_t n : {1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 64, 128, 256}) {
-        double ns[2][2] = {};
-        for (int kind = 0; kind < 2; ++kind) {
-            const rt::scene s = random_scene(n, kind == 1, random);
+    const std::size_t counts[] = {1, 2, 3, 4, 5, 6, 7, 8, 10, 12, 16, 24, 32, 64, 128, 256};
+    std::size_t wins_from = 0; // the smallest n from which the BVH wins in every column
+    std::cout << "nanoseconds of processor time per closest-hit ray, one thread, " << rays.size()
+              << " rays into the unit cube, best of 5 runs\n"
+              << "           small primitives (most rays miss)    large primitives (most rays hit)\n"
+              << "  n   triangles: flat    bvh  spheres: flat    bvh  triangles: flat    bvh  spheres: flat    bvh\n";
+    for (std::size_t n : counts) {
+        double ns[4][2] = {};
+        bool bvh_wins = true;
+        for (int column = 0; column < 4; ++column) {
+            const bool spheres = column % 2 == 1;
+            const rt::real size = column < 2 ? rt::real(0.5) : rt::real(2);
+            const rt::scene s = random_scene(n, spheres, size, random);
             const rt::accelerator flat(s, rt::accelerator_kind::flat);
             const rt::accelerator tree(s, rt::accelerator_kind::bvh);
             std::size_t hits_flat = 0, hits_tree = 0;
-            ns[kind][0] = time_per_ray(flat, rays, hits_flat);
-            ns[kind][1] = time_per_ray(tree, rays, hits_tree);
+            ns[column][0] = time_per_ray(flat, rays, hits_flat);
+            ns[column][1] = time_per_ray(tree, rays, hits_tree);
             if (hits_flat != hits_tree)
                 throw rt::error("the flat list and the BVH disagree on " + std::to_string(n) + " primitives");
+            bvh_wins = bvh_wins && ns[column][1] < ns[column][0];
         }
-        if (first_tri == 0 && ns[0][1] < ns[0][0])
-            first_tri = n;
-        if (first_sphere == 0 && ns[1][1] < ns[1][0])
-            first_sphere = n;
-        std::cout << std::setw(3) << n << std::fixed << std::setprecision(1) << std::setw(18) << ns[0][0]
-                  << std::setw(8) << ns[0][1] << std::setw(16) << ns[1][0] << std::setw(8) << ns[1][1] << '\n';
+        if (!bvh_wins)
+            wins_from = 0;
+        else if (wins_from == 0)
+            wins_from = n;
+        std::cout << std::setw(3) << n << std::fixed << std::setprecision(0);
+        for (int column = 0; column < 4; ++column)
+            std::cout << std::setw(column % 2 == 0 ? 18 : 15) << ns[column][0] << std::setw(7) << ns[column][1];
+        std::cout << '\n';
     }
-    std::cout << "the BVH is first faster at " << first_tri << " triangles and " << first_sphere
-              << " spheres; rt::flat_list_crossover = " << rt::flat_list_crossover << '\n';
+    std::cout << "the BVH is faster in every column from n = " << wins_from
+              << "; rt::flat_list_crossover = " << rt::flat_list_crossover << '\n';
     return 0;
 }
 
@@ -271,8 +298,8 @@ int main(int argc, char** argv)
                 output = args.value_of("-o");
             } else if (arg == "--mode") {
                 mode = args.value_of("--mode");
-                if (mode != "normals" && mode != "depth")
-                    throw rt::error("--mode: expected normals or depth, found '" + mode + "'");
+                if (mode != "normals" && mode != "geometric" && mode != "depth")
+                    throw rt::error("--mode: expected normals, geometric or depth, found '" + mode + "'");
             } else if (arg == "--size") {
                 const std::string size = args.value_of("--size");
                 const std::size_t x = size.find('x');
@@ -311,8 +338,23 @@ int main(int argc, char** argv)
                 width = world_scene.width;
                 height = world_scene.height;
             }
-            std::cout << input << ": " << world_scene.shapes.size() << " shapes (load " << std::setprecision(3)
-                      << seconds_since(load_start) << " s)\n";
+            std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0, dropped = 0;
+            for (const rt::shape& item : world_scene.shapes) {
+                if (std::holds_alternative<rt::sphere>(item))
+                    ++spheres;
+                else if (std::holds_alternative<rt::triangle>(item))
+                    ++triangles;
+                else {
+                    const rt::mesh& m = std::get<rt::mesh>(item);
+                    ++meshes;
+                    mesh_triangles += m.triangles.size();
+                    dropped += m.dropped_degenerate;
+                }
+            }
+            std::cout << input << ": " << spheres << " spheres, " << triangles << " triangles, " << meshes
+                      << " meshes of " << mesh_triangles << " triangles (" << dropped
+                      << " degenerate triangles dropped) (load " << std::setprecision(3) << seconds_since(load_start)
+                      << " s)\n";
         } else {
             rt::obj_result loaded = rt::load_obj(input);
             std::cout << rt::summary(loaded) << " (load " << std::setprecision(3) << seconds_since(load_start)
@@ -333,24 +375,25 @@ int main(int argc, char** argv)
         std::cout << std::fixed << std::setprecision(3) << "accelerator: " << rt::to_string(world.kind()) << " over "
                   << world.primitive_count() << " primitives, built in " << build_seconds << " s";
         if (world.kind() == rt::accelerator_kind::bvh)
-            std::cout << "; " << stats.nodes << " nodes (" << sizeof(rt::bvh_node) << " bytes each), "
+            std::cout << "; " << stats.nodes << " 4-wide nodes (" << sizeof(rt::bvh_node) << " bytes each"
+                      << (rt::bvh::uses_sse ? ", tested with SSE" : "") << "), "
                       << stats.leaves << " leaves, depth " << stats.depth << ", SAH cost " << std::setprecision(1)
                       << stats.sah_cost;
         std::cout << '\n';
 
         const rt::ray_generator gen = rt::make_ray_generator(world_scene.cam, width, height);
-        render_result best = trace(world, gen);
+        render_result best = trace(world, gen, mode == "geometric");
         for (int k = 1; k < repeat; ++k) {
-            render_result again = trace(world, gen);
-            if (again.seconds < best.seconds)
+            render_result again = trace(world, gen, mode == "geometric");
+            if (again.cpu_seconds < best.cpu_seconds)
                 best = std::move(again);
         }
         const double rays = double(width) * double(height);
-        std::cout << std::setprecision(3) << "traced " << width << "x" << height << " primary rays, "
-                  << std::setprecision(1) << 100.0 * double(best.hits) / rays << "% hit, in " << std::setprecision(4)
-                  << best.seconds << " s: " << std::setprecision(2) << rays / best.seconds / 1e6
-                  << " Mrays/s (closest hit, 1 thread" << (repeat > 1 ? ", fastest of " + std::to_string(repeat) : "")
-                  << ")\n";
+        std::cout << "traced " << width << "x" << height << " primary rays (" << std::setprecision(1)
+                  << 100.0 * double(best.hits) / rays << "% hit), closest hit, 1 thread"
+                  << (repeat > 1 ? ", fastest of " + std::to_string(repeat) : "") << ": " << std::setprecision(2)
+                  << rays / best.cpu_seconds / 1e6 << " Mrays/s of processor time (" << std::setprecision(4)
+                  << best.cpu_seconds << " s; wall clock " << best.seconds << " s)\n";
 
         const bool pfm = ends_with(output, ".pfm");
         const rt::image result = mode == "depth" ? depth_image(best.depth, width, height, pfm) : best.picture;

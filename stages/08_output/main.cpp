@@ -7,15 +7,14 @@
 //     stage08_output --pattern zoneplate --width 256 --height 256 --sampler jittered --spp 16 -o zp.png
 //
 // Each sample's colour is rt::ray_color (stages 05-07) over the scene's
-// rt::accelerator (stage 04), or a debug image (--aov).
+// rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
+// include/rt/render_setup.hpp, shared with the viewer (stages/viewer).
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <iostream>
 #include <limits>
-#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -23,133 +22,38 @@
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
 #include <rt/filter.hpp>
-#include <rt/intersect.hpp>
 #include <rt/image_io.hpp>
-#include <rt/obj_loader.hpp>
 #include <rt/progress.hpp>
-#include <rt/ray_image.hpp>
-#include <rt/raytracer.hpp>
+#include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/scene.hpp>
-#include <rt/scene_loader.hpp>
 #include <rt/tonemap.hpp>
 
+#include "render_arguments.hpp"
 #include "stage_main.hpp"
 
 namespace {
 
-const char* usage =
+const std::string usage = std::string(
     "usage: stage08_output (SCENE | MODEL.obj | --pattern NAME) [options]\n"
     "Renders a scene file, a bare OBJ model (framed by a camera, lit from the camera),\n"
     "or an analytic test pattern, to an image whose format the extension names.\n"
     "  -o OUTPUT             .png or .ppm (8-bit, through the colour pipeline) or .pfm\n"
     "                        (linear floats, exact); default render.png\n"
-    "  --width W, --height H image size in pixels (default: the scene's; 512x512 for a pattern)\n"
-    "  --spp N               samples per pixel, 1..65536 (default: the scene's `samples`)\n"
-    "  --sampler S           center | grid | random | jittered | halton\n"
-    "                        (default: center for 1 spp, jittered otherwise)\n"
-    "  --filter F            box | tent | gaussian | mitchell (default box)\n"
-    "  --filter-radius R     the filter's radius in pixels, (0, 16] (default: the filter's own)\n"
-    "  --threads N           worker threads, 0 = all cores (default 0)\n"
-    "  --max-depth N         mirror recursion limit, 0..64 (default: the scene's max_depth)\n"
-    "  --tonemap T           clamp | reinhard | aces (default clamp)\n"
-    "  --exposure STOPS      scale the image by 2^STOPS before the tone map (default 0)\n"
-    "  --gamma G             store with a plain gamma G instead of the sRGB curve\n"
-    "  --seed N              seed of every random choice, 0..2^64-1 (default 0)\n"
-    "  --aov A               depth | normal | position | rays: a debug image instead of\n"
-    "                        the shaded one, stored without exposure, tone map or gamma\n"
+    ) + stage::render_options_usage +
     "  --pattern P           zoneplate | edge: render an analytic test pattern, no scene\n"
+    "                        (512x512 unless --width and --height say otherwise)\n"
     "  --crop X0 X1 Y0 Y1    render columns [X0, X1) and rows [Y0, Y1) (from the top-left)\n"
     "                        of the full image only; pieces paste together exactly\n"
     "  --quiet               no progress bar and no summary line\n"
     "  --help                this text\n";
 
-std::string quoted(const std::string& text)
-{
-    return "'" + text + "'";
-}
-
-std::string number_text(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-/// A whole integer in [lo, hi], or a one-line error naming the option.
-long long parse_integer(const std::string& option, const std::string& text, long long lo, long long hi)
-{
-    std::size_t used = 0;
-    long long value = 0;
-    try {
-        value = std::stoll(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || value < lo || value > hi)
-        throw rt::error("option " + option + ": expected an integer from " + std::to_string(lo) + " to " +
-                        std::to_string(hi) + ", found " + quoted(text) + "; see --help");
-    return value;
-}
-
-std::uint64_t parse_seed(const std::string& text)
-{
-    std::size_t used = 0;
-    unsigned long long value = 0;
-    try {
-        if (!text.empty() && text[0] != '-')
-            value = std::stoull(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size())
-        throw rt::error("option --seed: expected an integer from 0 to 18446744073709551615, found " + quoted(text) +
-                        "; see --help");
-    return value;
-}
-
-/// A finite number in [lo, hi] (lo exclusive when `open_below`), or a one-line error.
-double parse_number(const std::string& option, const std::string& text, double lo, double hi, bool open_below = false)
-{
-    std::size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    const bool low_ok = open_below ? value > lo : value >= lo;
-    if (used == 0 || used != text.size() || !std::isfinite(value) || !low_ok || value > hi)
-        throw rt::error("option " + option + ": expected a number in " + (open_below ? "(" : "[") +
-                        number_text(lo) + ", " + number_text(hi) + "], found " + quoted(text) + "; see --help");
-    return value;
-}
-
-template <class Kind>
-Kind parse_name(const std::string& option, const std::string& text, std::optional<Kind> (*from_name)(const std::string&),
-                const std::string& choices)
-{
-    const std::optional<Kind> kind = from_name(text);
-    if (!kind)
-        throw rt::error("option " + option + ": expected one of " + choices + ", found " + quoted(text) +
-                        "; see --help");
-    return *kind;
-}
-
-enum class aov_kind { none, depth, normal, position, rays };
 enum class pattern_kind { none, zoneplate, edge };
 
 struct settings {
-    std::string input, output = "render.png";
-    std::optional<int> width, height, spp, max_depth;
-    std::optional<rt::sampler_kind> sampler;
-    rt::filter_kind filter = rt::filter_kind::box;
-    std::optional<double> filter_radius;
-    int threads = 0;
-    rt::encoding encoding;
-    std::uint64_t seed = 0;
-    aov_kind aov = aov_kind::none;
+    stage::render_settings render;
+    std::string output = "render.png";
     pattern_kind pattern = pattern_kind::none;
     std::optional<rt::crop_window> crop;
     bool quiet = false;
@@ -166,46 +70,8 @@ settings read_arguments(stage::arguments& args)
             s.help = true;
         } else if (arg == "-o") {
             s.output = value();
-        } else if (arg == "--width") {
-            s.width = int(parse_integer(arg, value(), 1, 1 << 16));
-        } else if (arg == "--height") {
-            s.height = int(parse_integer(arg, value(), 1, 1 << 16));
-        } else if (arg == "--spp") {
-            s.spp = int(parse_integer(arg, value(), 1, 1 << 16));
-        } else if (arg == "--sampler") {
-            s.sampler = parse_name<rt::sampler_kind>(arg, value(), rt::sampler_from_name,
-                                                     "center, grid, random, jittered, halton");
-        } else if (arg == "--filter") {
-            s.filter = parse_name<rt::filter_kind>(arg, value(), rt::filter_from_name, "box, tent, gaussian, mitchell");
-        } else if (arg == "--filter-radius") {
-            s.filter_radius = parse_number(arg, value(), 0, 16, true);
-        } else if (arg == "--threads") {
-            s.threads = int(parse_integer(arg, value(), 0, 1024));
-        } else if (arg == "--max-depth") {
-            s.max_depth = int(parse_integer(arg, value(), 0, 64));
-        } else if (arg == "--tonemap") {
-            s.encoding.tonemap =
-                parse_name<rt::tonemap_kind>(arg, value(), rt::tonemap_from_name, "clamp, reinhard, aces");
-        } else if (arg == "--exposure") {
-            s.encoding.exposure = float(parse_number(arg, value(), -64, 64));
-        } else if (arg == "--gamma") {
-            s.encoding.transfer = rt::transfer_kind::gamma;
-            s.encoding.gamma = float(parse_number(arg, value(), 0, 10, true));
-        } else if (arg == "--seed") {
-            s.seed = parse_seed(value());
-        } else if (arg == "--aov") {
-            const std::string name = value();
-            if (name == "depth")
-                s.aov = aov_kind::depth;
-            else if (name == "normal")
-                s.aov = aov_kind::normal;
-            else if (name == "position")
-                s.aov = aov_kind::position;
-            else if (name == "rays")
-                s.aov = aov_kind::rays;
-            else
-                throw rt::error("option --aov: expected one of depth, normal, position, rays, found " + quoted(name) +
-                                "; see --help");
+        } else if (stage::read_render_option(args, arg, s.render)) {
+            // one of the options stage08_output shares with the viewer
         } else if (arg == "--pattern") {
             const std::string name = value();
             if (name == "zoneplate")
@@ -213,114 +79,30 @@ settings read_arguments(stage::arguments& args)
             else if (name == "edge")
                 s.pattern = pattern_kind::edge;
             else
-                throw rt::error("option --pattern: expected zoneplate or edge, found " + quoted(name) + "; see --help");
+                throw rt::error("option --pattern: expected zoneplate or edge, found " + stage::quoted(name) +
+                                "; see --help");
         } else if (arg == "--crop") {
             rt::crop_window c;
-            c.x0 = int(parse_integer("--crop X0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.x1 = int(parse_integer("--crop X1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.y0 = int(parse_integer("--crop Y0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.y1 = int(parse_integer("--crop Y1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
+            c.x0 = int(stage::parse_integer("--crop X0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
+            c.x1 = int(stage::parse_integer("--crop X1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
+            c.y0 = int(stage::parse_integer("--crop Y0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
+            c.y1 = int(stage::parse_integer("--crop Y1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
             s.crop = c;
         } else if (arg == "--quiet" || arg == "-q") {
             s.quiet = true;
         } else if (!arg.empty() && arg[0] == '-') {
-            throw rt::error("expected an option (see --help), found " + quoted(arg));
-        } else if (s.input.empty()) {
-            s.input = arg;
+            throw rt::error("expected an option (see --help), found " + stage::quoted(arg));
+        } else if (s.render.input.empty()) {
+            s.render.input = arg;
         } else {
-            throw rt::error("expected one scene or OBJ file, found also " + quoted(arg) + "; see --help");
+            throw rt::error("expected one scene or OBJ file, found also " + stage::quoted(arg) + "; see --help");
         }
     }
     return s;
 }
 
-bool has_obj_extension(const std::string& path)
-{
-    if (path.size() < 4)
-        return false;
-    std::string tail = path.substr(path.size() - 4);
-    for (char& c : tail)
-        c = char(std::tolower(static_cast<unsigned char>(c)));
-    return tail == ".obj";
-}
-
-/// A scene for a bare OBJ model: the model with its own materials (the
-/// default material where it has none), a camera that frames its bounding
-/// sphere from the front and a little above, and one light at the camera.
-rt::scene scene_from_obj(const std::string& path, int nx, int ny)
-{
-    rt::obj_result obj = rt::load_obj(path);
-    rt::scene s;
-    s.width = nx;
-    s.height = ny;
-    s.materials = obj.materials;
-    s.shapes.emplace_back(std::move(obj.geometry));
-    const rt::aabb box = rt::scene_bounds(s);
-    if (box.empty())
-        throw rt::error(rt::source_location{path}, "expected a model with at least one triangle, found none");
-    const rt::real pi = rt::real(3.14159265358979323846);
-    const rt::vec3 centre = box.center();
-    const rt::real radius = std::max(glm::length(box.extent()) / 2, rt::real(1e-6));
-    const rt::real fov = 40;
-    // the bounding sphere fits the narrower of the two fields of view, with a 10% margin
-    const rt::real half = std::min(fov / 2 * pi / 180,
-                                   std::atan(std::tan(fov / 2 * pi / 180) * rt::real(s.width) / rt::real(s.height)));
-    const rt::real distance = rt::real(1.1) * radius / std::sin(half);
-    s.cam.kind = rt::projection::perspective;
-    s.cam.look_at = centre;
-    s.cam.eye = centre + distance * glm::normalize(rt::vec3(0, rt::real(0.3), 1));
-    s.cam.up = rt::vec3(0, 1, 0);
-    s.cam.fov_degrees = fov;
-    rt::light lamp;
-    lamp.kind = rt::light_kind::point;
-    lamp.position = s.cam.eye;
-    lamp.intensity = rt::color(1.0f);
-    s.lights.push_back(lamp);
-    return s;
-}
-
-using radiance_function = std::function<rt::color(const rt::ray&, rt::sample_context&)>;
-
-/// What each sample computes, for a scene: the shaded colour of stages 05-07
-/// (ray_color, with the scene's accelerator) or a debug image (AOV).
-radiance_function make_radiance(const rt::scene& scene, aov_kind aov)
-{
-    if (aov == aov_kind::rays)
-        return [](const rt::ray& r, rt::sample_context&) { return rt::direction_to_color(r.direction); };
-    // built once, shared by every worker thread (closest_hit and any_hit are const)
-    const auto accel = std::make_shared<const rt::accelerator>(scene);
-    const rt::real far = std::numeric_limits<rt::real>::infinity();
-    switch (aov) {
-    case aov_kind::depth:
-        // the distance along the ray, t |d|; 0 where the ray misses
-        return [accel, far](const rt::ray& r, rt::sample_context&) {
-            rt::hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? rt::color(float(hit.t * glm::length(r.direction)))
-                                                     : rt::color(0.0f);
-        };
-    case aov_kind::normal:
-        // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
-        return [accel, far](const rt::ray& r, rt::sample_context&) {
-            rt::hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? rt::color((hit.normal + rt::vec3(1)) * rt::real(0.5))
-                                                     : rt::color(0.0f);
-        };
-    case aov_kind::position:
-        return [accel, far](const rt::ray& r, rt::sample_context&) {
-            rt::hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? rt::color(hit.point) : rt::color(0.0f);
-        };
-    case aov_kind::rays:
-    case aov_kind::none: break;
-    }
-    const auto shared_scene = std::make_shared<const rt::scene>(scene);
-    return [accel, shared_scene](const rt::ray& r, rt::sample_context&) {
-        return rt::ray_color(*shared_scene, *accel, r);
-    };
-}
-
 /// An analytic test pattern of the film position (x, y) in an nx x ny image.
-radiance_function make_pattern(pattern_kind pattern, int nx, int ny)
+rt::radiance_function make_pattern(pattern_kind pattern, int nx, int ny)
 {
     const double cx = nx / 2.0, cy = ny / 2.0;
     if (pattern == pattern_kind::zoneplate) {
@@ -353,56 +135,41 @@ int main(int argc, char** argv)
             std::cout << usage;
             return 0;
         }
-        if (set.input.empty() == (set.pattern == pattern_kind::none))
-            throw rt::error(set.input.empty() ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
-                                              : "expected a scene file or --pattern, found both; see --help");
-        if (set.pattern != pattern_kind::none && set.aov != aov_kind::none)
+        const stage::render_settings& render = set.render;
+        if (render.input.empty() == (set.pattern == pattern_kind::none))
+            throw rt::error(render.input.empty() ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
+                                                 : "expected a scene file or --pattern, found both; see --help");
+        if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::none)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
+        if (set.pattern != pattern_kind::none && render.camera)
+            throw rt::error("expected --camera or --pattern, found both; a pattern has no camera");
         rt::check_image_output(set.output); // fail before the work, not after it
 
         rt::scene scene;
-        if (set.pattern != pattern_kind::none) {
+        if (set.pattern != pattern_kind::none)
             scene.width = scene.height = 512;
-        } else if (has_obj_extension(set.input)) {
-            scene = scene_from_obj(set.input, set.width.value_or(scene.width), set.height.value_or(scene.height));
-        } else {
-            scene = rt::load_scene(set.input);
-        }
+        else
+            scene = stage::load_render_input(render); // with --camera and --max-depth applied
 
-        rt::render_options options;
-        options.width = set.width.value_or(scene.width);
-        options.height = set.height.value_or(scene.height);
-        options.samples_per_pixel = set.spp.value_or(scene.samples);
-        options.sampler =
-            set.sampler.value_or(options.samples_per_pixel == 1 ? rt::sampler_kind::center : rt::sampler_kind::jittered);
-        options.reconstruction = rt::make_filter(
-            set.filter, set.filter_radius ? std::optional<rt::real>(rt::real(*set.filter_radius)) : std::nullopt);
-        options.threads = set.threads;
-        options.seed = set.seed;
+        rt::render_options options = stage::render_options_for(render, scene);
         options.crop = set.crop;
-        scene.max_depth = set.max_depth.value_or(scene.max_depth);
         rt::check_render_options(options);
 
-        radiance_function radiance;
-        std::function<rt::ray(rt::real, rt::real)> ray_at;
+        rt::radiance_function radiance;
+        rt::ray_source ray_at;
         if (set.pattern != pattern_kind::none) {
             radiance = make_pattern(set.pattern, options.width, options.height);
             ray_at = [](rt::real x, rt::real y) { return rt::ray{rt::vec3(x, y, 0), rt::vec3(0, 0, -1)}; };
         } else {
-            radiance = make_radiance(scene, set.aov);
-            const rt::ray_generator gen = rt::make_ray_generator(scene.cam, options.width, options.height);
-            ray_at = [gen](rt::real x, rt::real y) { return rt::generate_ray(gen, x, y); };
+            radiance = rt::make_radiance(scene, render.aov);
+            ray_at = rt::camera_rays(scene.cam, options.width, options.height);
         }
 
         rt::progress_bar bar(std::cerr, !set.quiet && rt::stderr_is_terminal());
         const rt::render_result result = rt::render(options, ray_at, radiance, bar.callback());
         bar.finish();
 
-        // AOVs are data, not light: stored as they are (clamped, linear bytes)
-        rt::encoding encoding = set.encoding;
-        if (set.aov != aov_kind::none)
-            encoding = rt::encoding{0.0f, rt::tonemap_kind::clamp, rt::transfer_kind::gamma, 1.0f};
-        rt::save_image(set.output, result.pixels, encoding);
+        rt::save_image(set.output, result.pixels, rt::output_encoding(render.aov, render.encoding));
         if (!set.quiet)
             std::cerr << "wrote " << set.output << ": " << rt::summary_line(result.stats) << " ("
                       << rt::name_of(options.sampler) << ", " << rt::name_of(options.reconstruction.kind) << " "

@@ -1,0 +1,201 @@
+// render_arguments.hpp - the render options that stage08_output and the viewer
+// share (--width ... --aov, --camera), read with the same checks and the same
+// one-line messages, and turned into rt::render_options the same way.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include <rt/camera.hpp>
+#include <rt/encoding.hpp>
+#include <rt/error.hpp>
+#include <rt/filter.hpp>
+#include <rt/render_setup.hpp>
+#include <rt/renderer.hpp>
+#include <rt/sampler.hpp>
+#include <rt/scene.hpp>
+#include <rt/tonemap.hpp>
+
+#include "stage_main.hpp"
+
+namespace stage {
+
+inline std::string quoted(const std::string& text)
+{
+    return "'" + text + "'";
+}
+
+inline std::string number_text(double value)
+{
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+/// A whole integer in [lo, hi], or a one-line error naming the option.
+inline long long parse_integer(const std::string& option, const std::string& text, long long lo, long long hi)
+{
+    std::size_t used = 0;
+    long long value = 0;
+    try {
+        value = std::stoll(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || value < lo || value > hi)
+        throw rt::error("option " + option + ": expected an integer from " + std::to_string(lo) + " to " +
+                        std::to_string(hi) + ", found " + quoted(text) + "; see --help");
+    return value;
+}
+
+inline std::uint64_t parse_seed(const std::string& text)
+{
+    std::size_t used = 0;
+    unsigned long long value = 0;
+    try {
+        if (!text.empty() && text[0] != '-')
+            value = std::stoull(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size())
+        throw rt::error("option --seed: expected an integer from 0 to 18446744073709551615, found " + quoted(text) +
+                        "; see --help");
+    return value;
+}
+
+/// A finite number in [lo, hi] (lo exclusive when `open_below`), or a one-line error.
+inline double parse_number(const std::string& option, const std::string& text, double lo, double hi, bool open_below = false)
+{
+    std::size_t used = 0;
+    double value = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    const bool low_ok = open_below ? value > lo : value >= lo;
+    if (used == 0 || used != text.size() || !std::isfinite(value) || !low_ok || value > hi)
+        throw rt::error("option " + option + ": expected a number in " + (open_below ? "(" : "[") +
+                        number_text(lo) + ", " + number_text(hi) + "], found " + quoted(text) + "; see --help");
+    return value;
+}
+
+template <class Kind>
+Kind parse_name(const std::string& option, const std::string& text, std::optional<Kind> (*from_name)(const std::string&),
+                const std::string& choices)
+{
+    const std::optional<Kind> kind = from_name(text);
+    if (!kind)
+        throw rt::error("option " + option + ": expected one of " + choices + ", found " + quoted(text) +
+                        "; see --help");
+    return *kind;
+}
+
+/// The help lines of the shared options.
+inline constexpr const char* render_options_usage =
+    "  --width W, --height H image size in pixels (default: the scene's)\n"
+    "  --spp N               samples per pixel, 1..65536 (default: the scene's `samples`)\n"
+    "  --sampler S           center | grid | random | jittered | halton\n"
+    "                        (default: center for 1 spp, jittered otherwise)\n"
+    "  --filter F            box | tent | gaussian | mitchell (default box)\n"
+    "  --filter-radius R     the filter's radius in pixels, (0, 16] (default: the filter's own)\n"
+    "  --threads N           worker threads, 0 = all cores (default 0)\n"
+    "  --camera \"ARGS\"       the camera instead of the scene's, as the arguments of a scene\n"
+    "                        file's camera statement: \"perspective eye X Y Z look_at X Y Z\n"
+    "                        up X Y Z fov DEGREES\" (the viewer prints them)\n"
+    "  --max-depth N         mirror recursion limit, 0..64 (default: the scene's max_depth)\n"
+    "  --tonemap T           clamp | reinhard | aces (default clamp)\n"
+    "  --exposure STOPS      scale the image by 2^STOPS before the tone map (default 0)\n"
+    "  --gamma G             store with a plain gamma G instead of the sRGB curve\n"
+    "  --seed N              seed of every random choice, 0..2^64-1 (default 0)\n"
+    "  --aov A               depth | normal | position | rays: a debug image instead of\n"
+    "                        the shaded one, stored without exposure, tone map or gamma\n";
+
+/// Everything the shared options set; unset optionals mean "the scene's".
+struct render_settings {
+    std::string input;  ///< the scene file or OBJ model
+    std::optional<int> width, height, spp, max_depth;
+    std::optional<rt::sampler_kind> sampler;
+    rt::filter_kind filter = rt::filter_kind::box;
+    std::optional<double> filter_radius;
+    int threads = 0;
+    rt::encoding encoding;
+    std::uint64_t seed = 0;
+    rt::aov_kind aov = rt::aov_kind::none;
+    std::optional<rt::camera> camera;
+};
+
+/// If `arg` (just taken from `args`) is a shared option, reads its value into
+/// `s` and returns true; otherwise returns false and reads nothing.
+inline bool read_render_option(arguments& args, const std::string& arg, render_settings& s)
+{
+    auto value = [&] { return args.value_of(arg); };
+    if (arg == "--width") {
+        s.width = int(parse_integer(arg, value(), 1, 1 << 16));
+    } else if (arg == "--height") {
+        s.height = int(parse_integer(arg, value(), 1, 1 << 16));
+    } else if (arg == "--spp") {
+        s.spp = int(parse_integer(arg, value(), 1, 1 << 16));
+    } else if (arg == "--sampler") {
+        s.sampler = parse_name<rt::sampler_kind>(arg, value(), rt::sampler_from_name,
+                                                 "center, grid, random, jittered, halton");
+    } else if (arg == "--filter") {
+        s.filter = parse_name<rt::filter_kind>(arg, value(), rt::filter_from_name, "box, tent, gaussian, mitchell");
+    } else if (arg == "--filter-radius") {
+        s.filter_radius = parse_number(arg, value(), 0, 16, true);
+    } else if (arg == "--threads") {
+        s.threads = int(parse_integer(arg, value(), 0, 1024));
+    } else if (arg == "--camera") {
+        s.camera = rt::parse_camera_statement(value(), "--camera");
+    } else if (arg == "--max-depth") {
+        s.max_depth = int(parse_integer(arg, value(), 0, 64));
+    } else if (arg == "--tonemap") {
+        s.encoding.tonemap =
+            parse_name<rt::tonemap_kind>(arg, value(), rt::tonemap_from_name, "clamp, reinhard, aces");
+    } else if (arg == "--exposure") {
+        s.encoding.exposure = float(parse_number(arg, value(), -64, 64));
+    } else if (arg == "--gamma") {
+        s.encoding.transfer = rt::transfer_kind::gamma;
+        s.encoding.gamma = float(parse_number(arg, value(), 0, 10, true));
+    } else if (arg == "--seed") {
+        s.seed = parse_seed(value());
+    } else if (arg == "--aov") {
+        s.aov = parse_name<rt::aov_kind>(arg, value(), rt::aov_from_name, "depth, normal, position, rays");
+    } else {
+        return false;
+    }
+    return true;
+}
+
+/// The scene or OBJ of the settings, with --camera applied.
+inline rt::scene load_render_input(const render_settings& s)
+{
+    rt::scene scene = rt::load_input(s.input, s.width, s.height);
+    if (s.camera)
+        scene.cam = *s.camera;
+    if (s.max_depth)
+        scene.max_depth = *s.max_depth;
+    return scene;
+}
+
+/// The render options of the settings for `scene` (its size and samples unless overridden).
+inline rt::render_options render_options_for(const render_settings& s, const rt::scene& scene)
+{
+    rt::render_options options;
+    options.width = s.width.value_or(scene.width);
+    options.height = s.height.value_or(scene.height);
+    options.samples_per_pixel = s.spp.value_or(scene.samples);
+    options.sampler = s.sampler.value_or(rt::default_sampler(options.samples_per_pixel));
+    options.reconstruction =
+        rt::make_filter(s.filter, s.filter_radius ? std::optional<rt::real>(rt::real(*s.filter_radius)) : std::nullopt);
+    options.threads = s.threads;
+    options.seed = s.seed;
+    return options;
+}
+
+} // namespace stage
