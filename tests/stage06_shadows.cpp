@@ -124,7 +124,7 @@ TEST_CASE("a sphere over a plane: inside the analytic shadow disc is shadowed, o
     CHECK(c.leaks == 0);
 }
 
-TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: none with the robust offset, some with a fixed epsilon")
+TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor leaks with the robust offset, acne with a fixed epsilon")
 {
     struct setting {
         double scale;
@@ -139,20 +139,22 @@ TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: none with the rob
     for (double e = -3; e <= largest_offset; ++e)
         settings.push_back({1.0, std::pow(10.0, e)});
     int fixed_acne_total = 0;
-    std::string table = "scale     offset    lit  robust-acne  fixed-acne(1e-4)\n";
+    std::string table = "scale     offset    lit  shadowed  robust-acne  robust-leaks  fixed-acne(1e-4)\n";
     for (const setting& set : settings) {
         const rt::vec3 origin = rt::real(set.offset) * rt::vec3(0.6f, -0.48f, 0.64f);
         const shadow_scene q = make_scene(set.scale, origin);
         const shadow_count r = count_errors(q, robust);
         const shadow_count f = count_errors(q, fixed_epsilon);
         char line[128];
-        std::snprintf(line, sizeof line, "%-9.0e %-9.0e %5d %12d %17d\n", set.scale, set.offset, r.lit_points, r.acne,
-                      f.acne);
+        std::snprintf(line, sizeof line, "%-9.0e %-9.0e %5d %9d %12d %13d %17d\n", set.scale, set.offset,
+                      r.lit_points, r.shadow_points, r.acne, r.leaks, f.acne);
         table += line;
         CAPTURE(set.scale);
         CAPTURE(set.offset);
         CHECK(r.lit_points > 3000);
         CHECK(r.acne == 0);
+        CHECK(r.shadow_points > 20);
+        CHECK(r.leaks == 0); // and no light leaks through the ball: the offset is not too large either
         fixed_acne_total += f.acne;
     }
     MESSAGE(table);
