@@ -261,6 +261,31 @@ TEST_CASE("exposure: +1 stop doubles, -1 stop halves, 0 changes nothing")
     CHECK(rt::apply_exposure(c, 3.0f).b == doctest::Approx(24.0));
 }
 
+TEST_CASE("AOVs in 8 bits: data without a curve; depth scaled by the image's farthest hit")
+{
+    // depths 0 (a miss), 1, 3 and 4: the farthest, 4, becomes 255 and the rest
+    // scale with it, round(255 d / 4) = 0, 64, 191, 255
+    rt::image depth(4, 1);
+    const float d[] = {0.0f, 1.0f, 3.0f, 4.0f};
+    for (int x = 0; x < 4; ++x)
+        depth.at(x, 0) = rt::color(d[x]);
+    const rt::encoding shaded{3.0f, rt::tonemap_kind::aces, rt::transfer_kind::srgb, 2.2f};
+    const rt::encoding enc = rt::output_encoding(rt::aov_kind::depth, shaded, depth);
+    const int expected[] = {0, 64, 191, 255};
+    for (int x = 0; x < 4; ++x) {
+        CAPTURE(x);
+        CHECK(int(rt::encode_color(depth.at(x, 0), enc)[0]) == expected[x]);
+    }
+    // a farthest distance that is no power of two still reaches 255 exactly
+    depth.at(3, 0) = rt::color(3.0f);
+    CHECK(int(rt::encode_color(depth.at(3, 0), rt::output_encoding(rt::aov_kind::depth, shaded, depth))[0]) == 255);
+    // normals are (n + 1) / 2 in [0, 1]: stored linearly, whatever the shaded settings
+    const rt::encoding normals = rt::output_encoding(rt::aov_kind::normal, shaded, depth);
+    CHECK(int(rt::encode_color(rt::color(0.5f), normals)[0]) == 128);
+    // and the shaded image keeps its own settings
+    CHECK(rt::output_encoding(rt::aov_kind::none, shaded, depth).tonemap == rt::tonemap_kind::aces);
+}
+
 TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
 {
     CHECK(rt::srgb_encode(0.0f) == 0.0f);

@@ -11,7 +11,7 @@
 //     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
-//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::none, rt::encoding{}));
+//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::none, rt::encoding{}, out.pixels));
 #pragma once
 
 #include <algorithm>
@@ -32,6 +32,7 @@
 #include "encoding.hpp"
 #include "error.hpp"
 #include "hit_record.hpp"
+#include "image.hpp"
 #include "intersect.hpp"
 #include "light.hpp"
 #include "obj_loader.hpp"
@@ -198,13 +199,25 @@ inline radiance_function make_radiance(const scene& s, aov_kind aov)
     return make_radiance(s, std::make_shared<const accelerator>(s), aov);
 }
 
-/// How an image of `aov` is stored: the shaded image through `shaded`; an AOV
-/// is data, not light, so it is stored as it is (no exposure, clamp, linear bytes).
-inline encoding output_encoding(aov_kind aov, const encoding& shaded)
+/// How `pixels`, an image of `aov`, is stored in 8 bits (PNG, PPM; PFM keeps
+/// the floats as they are): the shaded image through `shaded`; an AOV is data,
+/// not light, so it is stored without tone map or transfer curve (clamp, linear
+/// bytes). Distances are not in [0, 1], so the depth image is scaled by the
+/// image's own farthest hit: 0 (black) at the eye, 255 at the farthest point.
+inline encoding output_encoding(aov_kind aov, const encoding& shaded, const image& pixels)
 {
     if (aov == aov_kind::none)
         return shaded;
-    return encoding{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
+    encoding data{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
+    if (aov == aov_kind::depth) {
+        float farthest = 0.0f;
+        for (const color& c : pixels.pixels)
+            if (std::isfinite(c.r))
+                farthest = std::max(farthest, c.r);
+        if (farthest > 0.0f)
+            data.exposure = -std::log2(farthest); // scale by 2^exposure = 1 / farthest
+    }
+    return data;
 }
 
 /// `value` as the shortest text that the scene loader and the command-line

@@ -170,7 +170,7 @@ int main(int argc, char** argv)
         const rt::render_result result = rt::render(options, ray_at, radiance, bar.callback());
         bar.finish();
 
-        rt::save_image(set.output, result.pixels, rt::output_encoding(render.aov, render.encoding));
+        rt::save_image(set.output, result.pixels, rt::output_encoding(render.aov, render.encoding, result.pixels));
         if (!set.quiet)
             std::cerr << "wrote " << set.output << ": " << rt::summary_line(result.stats) << " ("
                       << rt::name_of(options.sampler) << ", " << rt::name_of(options.reconstruction.kind) << " "

@@ -419,7 +419,8 @@ private:
     static void say(const std::string& message) { std::cerr << "viewer: " << message << '\n'; }
 
     /// The encoding the displayed image is shown (and saved) with.
-    rt::encoding display_encoding() const { return rt::output_encoding(status_.aov, encoding_); }
+    /// (For the depth view it depends on the image's farthest hit, so a new row may change every row.)
+    rt::encoding display_encoding() const { return rt::output_encoding(status_.aov, encoding_, shown_); }
 
     void reencode()
     {
@@ -448,8 +449,9 @@ private:
     void pull()
     {
         const rt::aov_kind before = status_.aov;
+        const float exposure_before = display_encoding().exposure;
         const std::pair<int, int> rows = progressive_->take(shown_, status_);
-        if (status_.aov != before && shown_.height > 0)
+        if ((status_.aov != before || display_encoding().exposure != exposure_before) && shown_.height > 0)
             encode_rows(0, shown_.height);
         else if (rows.first < rows.second)
             encode_rows(rows.first, rows.second);
@@ -521,7 +523,7 @@ private:
 
     void save(const viewer::completed_image& done, const std::string& path, bool tell)
     {
-        const rt::encoding enc = rt::output_encoding(done.settings.aov, encoding_);
+        const rt::encoding enc = rt::output_encoding(done.settings.aov, encoding_, done.pixels);
         rt::save_image(path, done.pixels, enc);
         if (tell)
             std::cerr << "viewer: wrote " << path << " (" << done.pass.samples_per_pixel

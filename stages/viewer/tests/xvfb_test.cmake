@@ -132,3 +132,30 @@ execute_process(COMMAND "${CMAKE_COMMAND}" -E compare_files "${WORK}/shot.ppm" "
 if(differ EQUAL 0)
   message(FATAL_ERROR "expected the orbit, pan and zoom to change the image, found the scene camera's image")
 endif()
+
+# 4. The depth view: a second run switches to it (key 3) and shows, byte for byte,
+#    the PNG stage08_output stores for --aov depth (scaled by the farthest hit).
+set(script "key 3; wait; screenshot depth-shot.ppm; args depth-args.txt; quit")
+execute_process(
+  COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24"
+          ${guard} "${VIEWER}" "${SCENE}" ${size} --spp 1 --threads 2 --timeout 120 --script "${script}"
+  WORKING_DIRECTORY "${WORK}"
+  RESULT_VARIABLE code
+  OUTPUT_VARIABLE out
+  ERROR_VARIABLE err
+  TIMEOUT 180)
+if(NOT code EQUAL 0 OR NOT EXISTS "${WORK}/depth-shot.ppm" OR NOT EXISTS "${WORK}/depth-args.txt")
+  message(FATAL_ERROR "expected the scripted depth view to exit with 0 and write depth-shot.ppm and "
+                      "depth-args.txt, found '${code}':\n${out}${err}")
+endif()
+file(STRINGS "${WORK}/depth-args.txt" arguments)
+list(FIND arguments "depth" depth_at)
+if(depth_at LESS 0)
+  message(FATAL_ERROR "expected '--aov depth' in the viewer's stage08_output arguments, found: ${arguments}")
+endif()
+render(depth-reference.ppm ${arguments})
+expect_same(depth-shot.ppm depth-reference.ppm "the depth view, read back")
+file(READ "${WORK}/depth-shot.ppm" depth_bytes HEX)
+if(NOT depth_bytes MATCHES "ffffff")
+  message(FATAL_ERROR "expected the depth view's farthest hit to be white (ff ff ff), found no white pixel")
+endif()
