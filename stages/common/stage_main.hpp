@@ -35,7 +35,7 @@ private:
 };
 
 /// Runs `body`, turning every exception into one line "program: message" on
-/// stderr and exit code 1 (2 for a usage error, 3 for an unfinished exercise).
+/// stderr and exit code 1, a usage error included (3 for an unfinished exercise).
 template <class Body>
 int run(const char* program, Body&& body)
 {
