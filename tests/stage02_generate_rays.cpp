@@ -248,3 +248,28 @@ TEST_CASE("to_byte: 0 and 1 are exact, NaN and negatives become 0")
     CHECK(rt::to_byte(std::nanf("")) == 0);
     CHECK(rt::to_byte(0.5f, 1.0f) == 128);
 }
+
+TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no camera frame needed)")
+{
+    // a tilted frame and an asymmetric window, so every term of eq. 4.1 shows
+    rt::ray_generator gen;
+    gen.e = rt::vec3(1, 2, 3);
+    gen.basis.u = rt::vec3(0, 0, -1);
+    gen.basis.v = rt::vec3(0, 1, 0);
+    gen.basis.w = rt::vec3(1, 0, 0);
+    gen.plane = rt::window{-2, 6, -1, 3};
+    gen.d = 2;
+    gen.nx = 8;
+    gen.ny = 4;
+    // pixel (i, j) = (1, 2) at its centre: u = l + (r - l)(i + 0.5)/nx = -2 + 8 * 1.5 / 8 = -0.5,
+    // v = b + (t - b)(j + 0.5)/ny = -1 + 4 * 2.5 / 4 = 1.5 (both exact in binary)
+    const rt::ray p = rt::generate_ray(gen, 1.5f, 2.5f);
+    CHECK(p.origin == gen.e);
+    // perspective (FCG 4.3.2): d = -d w + u U + v V = (-2, 1.5, 0.5)
+    CHECK(p.direction == rt::vec3(-2, 1.5f, 0.5f));
+    gen.kind = rt::projection::orthographic;
+    const rt::ray o = rt::generate_ray(gen, 1.5f, 2.5f);
+    // orthographic (FCG 4.3.1): origin e + u U + v V, direction -w
+    CHECK(o.origin == rt::vec3(1, 3.5f, 3.5f));
+    CHECK(o.direction == rt::vec3(-1, 0, 0));
+}
