@@ -1140,3 +1140,75 @@ TEST_CASE("camera statement: the scene file's camera arguments, every field stat
     cam.focal_distance = 2;
     CHECK(rt::camera_statement(cam) == "orthographic eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 window -4 4 -3 2.5 focal 2");
 }
+
+namespace {
+
+/// A box [0, 8] x [0, 3] x [0, 4] as OBJ text, its faces turned outwards (an
+/// object) or inwards (a room), with face `missing` left out (-x, +x, -y, +y,
+/// -z, +z are 0 ... 5; -1: none).
+float real_bit(int bits, int axis) { return float((bits >> axis) & 1); }
+
+std::string box_obj(bool inward, int missing)
+{
+    const rt::vec3 size(8, 3, 4);
+    auto corner = [&](int bits) {
+        return rt::vec3(real_bit(bits, 0) * size.x, real_bit(bits, 1) * size.y, real_bit(bits, 2) * size.z);
+    };
+    std::string text;
+    for (int bits = 0; bits < 8; ++bits) {
+        const rt::vec3 c = corner(bits);
+        text += "v " + std::to_string(c.x) + " " + std::to_string(c.y) + " " + std::to_string(c.z) + "\n";
+    }
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            if (2 * axis + side == missing)
+                continue;
+            const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+            int quad[4];
+            const int cycle[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            for (int k = 0; k < 4; ++k)
+                quad[k] = (side << axis) | (cycle[k][0] << a1) | (cycle[k][1] << a2);
+            const rt::vec3 n = glm::cross(corner(quad[1]) - corner(quad[0]), corner(quad[2]) - corner(quad[0]));
+            const bool outwards = (n[axis] > 0) == (side == 1);
+            if (outwards == inward)
+                std::swap(quad[1], quad[3]);
+            text += "f " + std::to_string(quad[0] + 1) + " " + std::to_string(quad[1] + 1) + " " +
+                    std::to_string(quad[2] + 1) + " " + std::to_string(quad[3] + 1) + "\n";
+        }
+    return text;
+}
+
+} // namespace
+
+TEST_CASE("a bare OBJ is framed from outside, or seen from inside when it is a room")
+{
+    scratch_folder folder("framing");
+    auto camera_of = [&](bool inward, int missing) {
+        const std::filesystem::path path = folder.path / "box.obj";
+        std::ofstream(path, std::ios::binary) << box_obj(inward, missing);
+        return rt::load_input(path).cam;
+    };
+    const rt::vec3 centre(4, 1.5f, 2);
+    const float radius = glm::length(rt::vec3(8, 3, 4)) / 2;
+    SUBCASE("a closed room: the eye at the centre, looking along the longest horizontal axis (x)")
+    {
+        const rt::camera cam = camera_of(true, -1);
+        CHECK(cam.eye == centre);
+        const rt::vec3 view = cam.look_at - cam.eye;
+        CHECK(std::fabs(view.x) == doctest::Approx(glm::length(view)));
+    }
+    SUBCASE("a room open to the sky (no ceiling) is a room too")
+    {
+        CHECK(camera_of(true, 3).eye == centre);
+    }
+    SUBCASE("the same box wound outwards is an object: seen from outside its bounding sphere")
+    {
+        const rt::camera cam = camera_of(false, -1);
+        CHECK(glm::length(cam.eye - centre) > radius);
+        CHECK(cam.look_at == centre);
+    }
+    SUBCASE("a room without a front wall (the Cornell box) is seen from outside")
+    {
+        CHECK(glm::length(camera_of(true, 5).eye - centre) > radius);
+    }
+}
