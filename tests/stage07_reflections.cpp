@@ -7,9 +7,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include <rt/intersect.hpp>
 #include <rt/raytracer.hpp>
+#include <rt/render_setup.hpp>
 #include <rt/scene.hpp>
 
 namespace {
@@ -132,4 +134,33 @@ TEST_CASE("a mirror ball reflects the background where its reflections escape")
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0.3f, 0.4f, 5), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
     // a miss is the background itself
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(3, 0, 5), rt::vec3(0, 0, -1)}), 0.25, 0.5, 1.0);
+}
+
+TEST_CASE("two facing mirrors: exactly 1 + max_depth rays, plus one shadow ray per bounce when a light sees them")
+{
+    // The same mirrors, seen through rt::counting_accelerator (render_setup.hpp),
+    // which counts every query: the camera ray and D reflections are closest-hit
+    // queries; with a point light between the mirrors each of the D + 1 hits
+    // also sends one shadow ray (the light is in front of both mirrors).
+    for (int D : {0, 1, 5, 20}) {
+        for (bool lit : {false, true}) {
+            rt::scene s;
+            s.max_depth = D;
+            s.materials.push_back(ambient_material(rt::color(0.1f), rt::color(0.9f)));
+            add_square_z(s, 5, 0, 0);
+            add_square_z(s, 5, 2, 0);
+            if (lit) {
+                rt::light bulb;
+                bulb.position = rt::vec3(1, 1, 1);
+                s.lights.push_back(bulb);
+            }
+            const rt::accelerator accel(s);
+            std::uint64_t queries = 0;
+            rt::ray_color(s, rt::counting_accelerator{&accel, &queries},
+                          rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
+            CAPTURE(D);
+            CAPTURE(lit);
+            CHECK(queries == std::uint64_t(D + 1) * (lit ? 2u : 1u));
+        }
+    }
 }

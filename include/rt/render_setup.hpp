@@ -18,6 +18,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -210,6 +211,25 @@ inline ray_source camera_rays(const camera& cam, int nx, int ny)
     return [gen](real x, real y) { return generate_ray(gen, x, y); };
 }
 
+/// An accelerator seen through a counter of the queries made with it, so a
+/// render reports its shadow and mirror rays as well as its camera rays. One
+/// sample's own counter: it is made per sample, never shared between threads.
+struct counting_accelerator {
+    const accelerator* accel;
+    std::uint64_t* queries;
+
+    bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
+    {
+        ++*queries;
+        return accel->closest_hit(r, tmin, tmax, rec);
+    }
+    bool any_hit(const ray& r, real tmin, real tmax) const
+    {
+        ++*queries;
+        return accel->any_hit(r, tmin, tmax);
+    }
+};
+
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
 /// `accel`: the shaded colour of stages 05-07 (rt::ray_color) or a debug image.
 /// The function refers to `s` and `accel` (it shares ownership of `accel`;
@@ -242,7 +262,12 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
     case aov_kind::none: break;
     }
     const scene* shaded = &s;
-    return [accel, shaded](const ray& r, sample_context&) { return ray_color(*shaded, *accel, r); };
+    return [accel, shaded](const ray& r, sample_context& context) {
+        std::uint64_t traced = 0;
+        const color L = ray_color(*shaded, counting_accelerator{accel.get(), &traced}, r);
+        context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count
+        return L;
+    };
 }
 
 /// The same, building the accelerator of `s` (except for the rays image, which needs none).
