@@ -261,7 +261,7 @@ TEST_CASE("exposure: +1 stop doubles, -1 stop halves, 0 changes nothing")
     CHECK(rt::apply_exposure(c, 3.0f).b == doctest::Approx(24.0));
 }
 
-TEST_CASE("AOVs in 8 bits: data without a curve; depth scaled by the image's farthest hit")
+TEST_CASE("AOVs in 8 bits: data without a curve, and depth scaled by the image's farthest hit")
 {
     // depths 0 (a miss), 1, 3 and 4: the farthest, 4, becomes 255 and the rest
     // scale with it, round(255 d / 4) = 0, 64, 191, 255

@@ -342,7 +342,7 @@ TEST_CASE("a failing radiance function stops the view with its message, and the 
     CHECK(!renderer.completed().has_value());
 }
 
-TEST_CASE("script: commands split at newlines and ';', words at blanks, '#' comments")
+TEST_CASE("script: commands split at newlines and semicolons, words at blanks, '#' comments")
 {
     const std::vector<viewer::script_command> commands =
         viewer::parse_script("orbit 10 -5; zoom 2\n  key ]  # a comment; not a command\nwait;wait 3;; sleep 10\n"
