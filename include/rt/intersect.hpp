@@ -234,9 +234,10 @@ private:
             refine_sphere_hit(*ball, rec);
         } else {
             // the corners as packed (the same numbers as in the shape)
-            const real* v = h.source->v;
-            fill_triangle_record(vec3(v[0], v[1], v[2]), vec3(v[3], v[4], v[5]), vec3(v[6], v[7], v[8]), r,
-                                 triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
+            const real* v = h.corners;
+            const int k = h.stride;
+            fill_triangle_record(vec3(v[0], v[k], v[2 * k]), vec3(v[3 * k], v[4 * k], v[5 * k]),
+                                 vec3(v[6 * k], v[7 * k], v[8 * k]), r, triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
             if (const triangle* tri = std::get_if<triangle>(&item))
                 rec.material = tri->material;
             else
