@@ -1110,6 +1110,56 @@ public:
     static constexpr int stack_size = 3 * max_depth + 4;
 
 private:
+    /// A child waiting on the traversal stack, with the distance where the ray enters it.
+    struct entry {
+        std::uint32_t child, count;
+        real tnear;
+    };
+
+    /// The children met (bit c of `mask`, known at compile time) of `node`:
+    /// enter one, push the others. Any hit: the first met is entered and the
+    /// others pushed unsorted, since any hit ends the search whatever the
+    /// order (sorting them made shadow rays 1.6x slower on the bunny:
+    /// docs/performance.md). Closest hit: nearest first; one child is entered,
+    /// two are ordered by a select, not a branch (their order is a coin toss on
+    /// incoherent rays), three or four are ranked by order_children, without a
+    /// branch either: three entries are always written and top moves past the
+    /// n - 1 met.
+    template <int mask, bool any_hit>
+    static void descend(const bvh_node& node, const real tnear[4], entry* stack, int& top, std::uint32_t& child,
+                        std::uint32_t& count)
+    {
+        constexpr int first = detail::lowest_bit[mask];
+        constexpr int rest = mask & (mask - 1);
+        if constexpr (rest == 0) {
+            child = node.child[first];
+            count = node.count[first];
+        } else if constexpr (any_hit) {
+            for (int c = 0; c < 4; ++c)
+                if (c != first && (mask & (1 << c)))
+                    stack[top++] = entry{node.child[c], node.count[c], tnear[c]};
+            child = node.child[first];
+            count = node.count[first];
+        } else if constexpr ((rest & (rest - 1)) == 0) {
+            constexpr int second = detail::lowest_bit[rest];
+            const bool swap = tnear[second] < tnear[first];
+            const int near_child = swap ? second : first, far_child = swap ? first : second;
+            stack[top++] = entry{node.child[far_child], node.count[far_child], tnear[far_child]};
+            child = node.child[near_child];
+            count = node.count[near_child];
+        } else {
+            int order[4];
+            const int n = detail::order_children(mask, tnear, order);
+            for (int i = 3; i > 0; --i) {
+                const int c = order[i];
+                stack[top] = entry{node.child[c], node.count[c], tnear[c]};
+                top += i < n ? 1 : 0;
+            }
+            child = node.child[order[0]];
+            count = node.count[order[0]];
+        }
+    }
+
     template <bool any_hit, bool scalar>
     bool traverse(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
@@ -1118,10 +1168,6 @@ private:
         const detail::node_ray nr = detail::make_node_ray(r);
         const watertight_ray wr = make_watertight_ray(r);
         const detail::leaf_ray lr = detail::make_leaf_ray(wr);
-        struct entry {
-            std::uint32_t child, count;
-            real tnear;
-        };
         entry stack[stack_size];
         int top = 0;
         bool found = false;
@@ -1133,60 +1179,28 @@ private:
                 real tnear[4];
                 const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
                                         : detail::intersect_children(node, nr, tmin, closest_t, tnear);
-                if (mask != 0) {
-                    if constexpr (any_hit) {
-                        // Any hit ends the search, so the order of the children
-                        // cannot change the answer: enter the first one met and
-                        // push the others unsorted. (Sorting them made shadow rays
-                        // 1.6x slower on the bunny: bench/embree.cpp, docs/performance.md.)
-                        int first = -1;
-                        for (int c = 0; c < 4; ++c)
-                            if (mask & (1 << c)) {
-                                if (first < 0)
-                                    first = c;
-                                else
-                                    stack[top++] = entry{node.child[c], node.count[c], tnear[c]};
-                            }
-                        child = node.child[first];
-                        count = node.count[first];
-                        continue;
-                    }
-                    // Nearest first. One child met (most visits of coherent
-                    // rays, many of incoherent ones) or two: a branch on the
-                    // count, which the processor predicts well and which lets
-                    // it start on the next node before the order is known;
-                    // the two are ordered by a select, not a branch (their
-                    // order is a coin toss on incoherent rays). Three or four:
-                    // order_children ranks them without a branch; three
-                    // entries are always written, top moves past the n - 1 met.
-                    int met[4];
-                    int n = 0;
-                    for (int c = 0; c < 4; ++c)
-                        if (mask & (1 << c))
-                            met[n++] = c;
-                    if (n == 1) {
-                        child = node.child[met[0]];
-                        count = node.count[met[0]];
-                        continue;
-                    }
-                    if (n == 2) {
-                        const bool swap = tnear[met[1]] < tnear[met[0]];
-                        const int near_child = swap ? met[1] : met[0], far_child = swap ? met[0] : met[1];
-                        stack[top++] = entry{node.child[far_child], node.count[far_child], tnear[far_child]};
-                        child = node.child[near_child];
-                        count = node.count[near_child];
-                        continue;
-                    }
-                    int order[4];
-                    detail::order_children(mask, tnear, order);
-                    for (int i = 3; i > 0; --i) {
-                        const int c = order[i];
-                        stack[top] = entry{node.child[c], node.count[c], tnear[c]};
-                        top += i < n ? 1 : 0;
-                    }
-                    child = node.child[order[0]];
-                    count = node.count[order[0]];
-                    continue;
+                // One indirect branch on the mask (a jump table): each case
+                // knows at compile time which children it enters, so on
+                // coherent rays, where the branch is predicted, the processor
+                // starts loading the next node before the box test is done,
+                // and on incoherent rays a visit costs at most one misprediction.
+                switch (mask) {
+                case 0: break;
+                case 1: descend<1, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 2: descend<2, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 3: descend<3, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 4: descend<4, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 5: descend<5, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 6: descend<6, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 7: descend<7, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 8: descend<8, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 9: descend<9, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 10: descend<10, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 11: descend<11, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 12: descend<12, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 13: descend<13, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 14: descend<14, any_hit>(node, tnear, stack, top, child, count); continue;
+                default: descend<15, any_hit>(node, tnear, stack, top, child, count); continue;
                 }
             } else {
                 // a leaf: its blocks of four, each tested at once (see the
