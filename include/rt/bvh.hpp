@@ -13,11 +13,14 @@
 // centroids' extent on each axis, and the node is split at the slice boundary
 // of least surface area heuristic cost (MacDonald, Booth, "Heuristics for ray
 // tracing using space subdivision", The Visual Computer 6(3), 1990):
-//     C = C_trav + C_isect (A_L N_L + A_R N_R) / A,
-// A the surface areas of the boxes, N the primitive counts; a node becomes a
-// leaf when that is cheaper than any split (C_isect N <= C) and holds at most
-// max_leaf_size primitives, or when it reaches max_depth. The binary tree is
-// then collapsed into 4-wide nodes (see wide_collapser).
+//     C = C_trav + C_isect (A_L B(N_L) + A_R B(N_R)) / A,
+// A the surface areas of the boxes, N the primitive counts and B(N) =
+// ceil(N / 4) the leaf tests they cost (a leaf is tested four primitives at a
+// time, see below; Embree's builders count their four-triangle blocks the
+// same way); a node becomes a leaf when that is cheaper than any split
+// (C_isect B(N) <= C) and holds at most max_leaf_size primitives, or when it
+// reaches max_depth. The binary tree is then collapsed into 4-wide nodes (see
+// wide_collapser).
 //
 // Layout, and why:
 //  - A node holds the boxes of up to four children, not its own box (as the
@@ -30,25 +33,54 @@
 //    min/max, for four boxes. With the references a node is 128 bytes in
 //    float, two cache lines, aligned.
 //  - A child is an inner node (`child` is its index) or a leaf (`child` is
-//    leaf_flag | its first primitive, `count` its primitives). Leaves cost no
+//    leaf_flag | its first block, `count` its primitives). Leaves cost no
 //    node of their own. Nodes are stored flat in one array, depth first.
-//  - Primitives are copied into one array in leaf order (packed_primitive, 40
-//    bytes in float): a leaf's triangles are contiguous, and each carries its
-//    corners, not indices into a vertex array, so a test is one memory access.
+//  - A leaf's primitives are stored as blocks of four (triangle_block, 160
+//    bytes in float), one array of blocks in the order the nodes meet the
+//    leaves: the corners of four triangles as a structure of arrays (one row
+//    per coordinate, one column per triangle), so that one SIMD instruction
+//    does the same step of the watertight test for four triangles at once
+//    (detail::intersect_block). Each triangle carries its corners, not indices
+//    into a vertex array: a block is read in one sweep of consecutive cache
+//    lines. Before blocks, a leaf held 1.9 triangles on average (the SAH
+//    counted each one) and each was an out-of-line scalar test; the SAH now
+//    counts blocks, leaves hold about 5 triangles in 1.35 blocks, the tree has
+//    a third of the nodes, and a ray visits fewer of them (docs/performance.md,
+//    experiment 6). The test is decided lane by lane with the scalar test's
+//    operations in the same order, so both give the same bits, and the
+//    blocks need no mask: an unused lane holds NaN corners, whose t the range
+//    test refuses.
+//  - The packed primitives (packed_primitive, 40 bytes) are kept too, in leaf
+//    order, for the flat list and the tests.
 //  - Per ray, traversal precomputes the reciprocal direction and, per axis,
 //    which plane row of a node is met first (the sign of the reciprocal), so a
 //    box test is a subtraction and a multiplication per plane, no division and
 //    no branch. The watertight test's axis permutation and shear are also
 //    precomputed once per ray.
-//  - Children are visited nearest first: the hit children are sorted by entry
-//    distance, the nearest is entered and the others go on a fixed-size stack
-//    with their distances; an entry whose distance is beyond the closest hit
-//    found meanwhile is skipped when popped. The stack is a local array: no
-//    allocation per ray. any() returns at the first hit (shadow rays), and
-//    pushes the children unsorted: their order cannot change its answer.
-//  - With SSE2 (every x86-64 compiler, no -march needed) the four boxes are
-//    tested in 4-wide registers; elsewhere, and for rt::real = double, the same
-//    arithmetic runs one value at a time. Both give identical results.
+//  - Children are visited nearest first: the nearest child met is entered and
+//    the others go on a fixed-size stack with their entry distances; an entry
+//    whose distance is beyond the closest hit found meanwhile is skipped when
+//    popped. The stack is a local array: no allocation per ray. any() returns
+//    at the first hit (shadow rays), and pushes the children unsorted: their
+//    order cannot change its answer.
+//  - The order is found with one jump on the 4-bit mask of children met (a
+//    switch over the 15 masks, each case a template that knows its children at
+//    compile time: bvh::descend). On coherent rays the jump is predicted and
+//    the processor loads the next node before the box test has finished; on
+//    incoherent rays a visit costs at most one misprediction, where a loop
+//    over the four bits and an insertion sort cost several (cachegrind: 29
+//    branch misses per incoherent ray on the bunny). Two children are ordered
+//    by a select, three or four by ranking their distances in SIMD
+//    (detail::order_children), both without a branch. A version that ranked
+//    every visit without any branch was 2x slower on coherent rays: the next
+//    node's address then waits for the box test, which a predicted branch
+//    does not.
+//  - With SSE2 (every x86-64 compiler, no -march needed) the four boxes and
+//    the four triangles of a block are tested in 4-wide registers (the edge
+//    functions in double, two lanes per register, or four with AVX);
+//    elsewhere, and for rt::real = double, the same arithmetic runs one value
+//    at a time (intersect_children_scalar, intersect_block_scalar,
+//    bvh::closest_scalar). Both give identical results.
 //
 // The slab test is robust (Williams, Barrus, Morley, Shirley, "An Efficient and
 // Robust Ray-Box Intersection Algorithm", Journal of Graphics Tools 10(1),
@@ -1047,8 +1079,10 @@ public:
         stats_.nodes = nodes_.size();
 
         std::vector<packed_primitive> ordered(prims_.size());
-        for (std::size_t i = 0; i < items.size(); ++i)
+        for (std::size_t i = 0; i < items.size(); ++i) {
             ordered[i] = prims_[items[i].index];
+            has_spheres_ = has_spheres_ || (ordered[i].id & sphere_flag) != 0;
+        }
         prims_ = std::move(ordered);
 
         // each leaf's primitives as blocks of four, in the order the nodes
@@ -1224,6 +1258,8 @@ private:
                             closest_t = h.t;
                         }
                     }
+                    if (!has_spheres_) // most scenes: no need to look at the ids
+                        continue;
                     for (int spheres = detail::sphere_lanes(*block), lane = 0; spheres != 0; ++lane, spheres >>= 1) {
                         if (!(spheres & 1))
                             continue;
@@ -1259,6 +1295,7 @@ private:
     std::vector<packed_primitive> prims_;
     std::vector<bvh_node> nodes_;
     std::vector<triangle_block> blocks_;
+    bool has_spheres_ = false;
     bvh_stats stats_;
 };
 
