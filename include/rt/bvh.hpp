@@ -901,23 +901,38 @@ inline int sphere_lanes(const triangle_block& b)
 }
 
 #if RT_BVH_SSE
+/// Four floats widened to double: one AVX register, or two SSE2 registers
+/// (the low pair, then the high pair). Each sheared coordinate is widened once
+/// and serves two edge functions.
+struct wide4 {
+#if RT_BVH_AVX
+    __m256d all;
+#else
+    __m128d lo, hi;
+#endif
+};
+
+inline wide4 widen(__m128 a)
+{
+#if RT_BVH_AVX
+    return wide4{_mm256_cvtps_pd(a)};
+#else
+    return wide4{_mm_cvtps_pd(a), _mm_cvtps_pd(_mm_movehl_ps(a, a))};
+#endif
+}
+
 /// a b - c d for four lanes, each product and the difference in double, the
 /// result rounded to float: what intersect_watertight computes for one edge
 /// function, lane by lane, bit for bit (a product of two floats is exact in
 /// double, and the difference is rounded to double then to float in both).
-inline __m128 edge_function4(__m128 a, __m128 b, __m128 c, __m128 d)
+inline __m128 edge_function4(const wide4& a, const wide4& b, const wide4& c, const wide4& d)
 {
 #if RT_BVH_AVX
-    const __m256d ab = _mm256_mul_pd(_mm256_cvtps_pd(a), _mm256_cvtps_pd(b));
-    const __m256d cd = _mm256_mul_pd(_mm256_cvtps_pd(c), _mm256_cvtps_pd(d));
-    return _mm256_cvtpd_ps(_mm256_sub_pd(ab, cd));
+    return _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_mul_pd(a.all, b.all), _mm256_mul_pd(c.all, d.all)));
 #else
-    // two lanes at a time: the low pair, then the high pair moved down
-    const __m128d ab_lo = _mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b));
-    const __m128d cd_lo = _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d));
-    const __m128d ab_hi = _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(a, a)), _mm_cvtps_pd(_mm_movehl_ps(b, b)));
-    const __m128d cd_hi = _mm_mul_pd(_mm_cvtps_pd(_mm_movehl_ps(c, c)), _mm_cvtps_pd(_mm_movehl_ps(d, d)));
-    return _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(ab_lo, cd_lo)), _mm_cvtpd_ps(_mm_sub_pd(ab_hi, cd_hi)));
+    const __m128d lo = _mm_sub_pd(_mm_mul_pd(a.lo, b.lo), _mm_mul_pd(c.lo, d.lo));
+    const __m128d hi = _mm_sub_pd(_mm_mul_pd(a.hi, b.hi), _mm_mul_pd(c.hi, d.hi));
+    return _mm_movelh_ps(_mm_cvtpd_ps(lo), _mm_cvtpd_ps(hi));
 #endif
 }
 
@@ -960,9 +975,10 @@ inline int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const
     const __m128 Cx = _mm_sub_ps(cx, _mm_mul_ps(r.Sx, cz));
     const __m128 Cy = _mm_sub_ps(cy, _mm_mul_ps(r.Sy, cz));
     // edge functions, and the sign test: a miss when some are < 0 and some > 0
-    const __m128 U = edge_function4(Cx, By, Cy, Bx);
-    const __m128 V = edge_function4(Ax, Cy, Ay, Cx);
-    const __m128 W = edge_function4(Bx, Ay, By, Ax);
+    const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx), Cy2 = widen(Cy);
+    const __m128 U = edge_function4(Cx2, By2, Cy2, Bx2);
+    const __m128 V = edge_function4(Ax2, Cy2, Ay2, Cx2);
+    const __m128 W = edge_function4(Bx2, Ay2, By2, Ax2);
     const __m128 negative = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(U, zero), _mm_cmplt_ps(V, zero)), _mm_cmplt_ps(W, zero));
     const __m128 positive = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(U, zero), _mm_cmpgt_ps(V, zero)), _mm_cmpgt_ps(W, zero));
     int mask = ~_mm_movemask_ps(_mm_and_ps(negative, positive)) & 15;
