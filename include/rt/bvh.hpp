@@ -51,7 +51,8 @@
 //    blocks need no mask: an unused lane holds NaN corners, whose t the range
 //    test refuses.
 //  - The packed primitives (packed_primitive, 40 bytes) are kept too, in leaf
-//    order, for the flat list and the tests.
+//    order (bvh::primitives(), for the tests); traversal reads only the
+//    nodes and the blocks, and a hit's corners are read from its block.
 //  - Per ray, traversal precomputes the reciprocal direction and, per axis,
 //    which plane row of a node is met first (the sign of the reciprocal), so a
 //    box test is a subtraction and a multiplication per plane, no division and
