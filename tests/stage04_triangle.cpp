@@ -29,6 +29,7 @@
 #include <rt/bvh.hpp>
 #include <rt/intersect.hpp>
 #include <rt/obj_loader.hpp>
+#include <rt/offset.hpp>
 #include <rt/spawn.hpp>
 #include <rt/triangle.hpp>
 
@@ -354,6 +355,100 @@ TEST_CASE("rays from inside closed meshes at vertices and edges: Moller-Trumbore
         CHECK(total_mt_misses > 0); // the textbook method leaks in float
 }
 
+TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, through shared edges and vertices")
+{
+    // The BVH tests its leaves four triangles at a time (rt::triangle_block,
+    // rt::detail::intersect_block: SSE where available). Each lane must give
+    // exactly what intersect_watertight gives for that triangle alone: the same
+    // hit or miss, the same t and barycentrics, bit for bit. Rays from inside a
+    // closed mesh at every vertex and along every edge (where the sign tests
+    // decide), and random rays through it; the blocks are the mesh's triangles
+    // four by four, the last one partial, and one block holds a sphere, which
+    // the triangle test must leave alone.
+    const vec3 c(real(0.3), real(-0.7), real(0.2));
+    const real r = real(1.7);
+    const rt::mesh m = icosphere(2, c, r);
+    std::vector<rt::packed_primitive> prims;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        const rt::index3& f = m.triangles[i];
+        prims.push_back(rt::pack_triangle(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]], std::uint32_t(i)));
+    }
+    rt::sphere ball;
+    ball.center = c;
+    ball.radius = r / 2;
+    prims.insert(prims.begin() + 5, rt::pack_sphere(ball, 999)); // lane 1 of block 1
+    REQUIRE(prims.size() % 4 == 1);                                 // the last block has one lane
+    std::vector<rt::triangle_block> blocks;
+    for (std::size_t first = 0; first < prims.size(); first += 4)
+        blocks.push_back(rt::pack_triangle_block(prims.data(), first, std::min<std::size_t>(4, prims.size() - first)));
+    REQUIRE(blocks.size() == (prims.size() + 3) / 4);
+
+    std::vector<rt::ray> rays;
+    const vec3 inside[] = {c, c + r * vec3(0.3f, -0.2f, 0.1f), c + r * vec3(-0.45f, 0.35f, 0.3f)};
+    for (const vec3& origin : inside)
+        for (const surface_target& target : vertex_and_edge_targets(m))
+            rays.push_back(rt::ray{origin, target.point - origin});
+    std::mt19937 random(17);
+    std::uniform_real_distribution<real> unit(-1, 1);
+    auto random_vec = [&] { // one number per statement: the same rays with every compiler
+        vec3 v;
+        v.x = unit(random);
+        v.y = unit(random);
+        v.z = unit(random);
+        return v;
+    };
+    for (int k = 0; k < 3000; ++k) {
+        const vec3 from = c + 3 * r * random_vec();
+        const vec3 to = c + r * random_vec();
+        rays.push_back(rt::ray{from, to - from});
+    }
+
+    std::size_t lane_tests = 0, hits = 0, disagreements = 0, rays_missing_the_mesh = 0;
+    const std::size_t through_targets = rays.size() - 3000;
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        const rt::ray& ray = rays[k];
+        const rt::watertight_ray w = rt::make_watertight_ray(ray);
+        const rt::detail::leaf_ray leaf = rt::detail::make_leaf_ray(w);
+        bool any = false;
+        for (const real tmax : {rt::infinity, real(1)}) { // t = 1 is where the targets are
+            for (const rt::triangle_block& b : blocks) {
+                rt::triangle_hit simd[4];
+                const int mask = rt::detail::intersect_block(b, leaf, w, 0, tmax, simd);
+                for (int lane = 0; lane < 4; ++lane) {
+                    ++lane_tests;
+                    bool expected = false;
+                    rt::triangle_hit scalar;
+                    if (!(b.id[lane] & rt::sphere_flag)) {
+                        real v[9];
+                        for (int j = 0; j < 9; ++j)
+                            v[j] = b.v[j][lane];
+                        expected = rt::intersect_watertight(w, v, 0, tmax, scalar);
+                    }
+                    const bool got = (mask & (1 << lane)) != 0;
+                    bool same = got == expected;
+                    if (same && got) {
+                        ++hits;
+                        same = simd[lane].t == scalar.t && simd[lane].b0 == scalar.b0 && simd[lane].b1 == scalar.b1 &&
+                               simd[lane].b2 == scalar.b2;
+                    }
+                    disagreements += same ? 0 : 1;
+                    any = any || got;
+                }
+            }
+        }
+        if (k < through_targets && !any)
+            ++rays_missing_the_mesh;
+    }
+    const std::string path = rt::bvh::uses_sse ? "SSE" : "the scalar fallback";
+    MESSAGE("SIMD leaf test (" << path << "): " << rays.size() << " rays, "
+                               << lane_tests << " lane tests, " << hits << " hits, " << disagreements
+                               << " disagreements; rays at vertices and edges missing the closed mesh: "
+                               << rays_missing_the_mesh);
+    CHECK(hits > rays.size());
+    CHECK(disagreements == 0);
+    CHECK(rays_missing_the_mesh == 0);
+}
+
 // =============================================================================
 // Rays spawned from hits (PBR 3rd ed., sec. 3.9.5)
 // =============================================================================
@@ -443,6 +538,81 @@ TEST_CASE("a ray spawned from a hit never hits the same surface again at any sca
         CHECK(naive_total > 0);   // starting on the computed point re-hits
         CHECK(epsilon_total > 0); // a fixed epsilon is too small far from the origin
     }
+}
+
+TEST_CASE("a sliver just in front of a spawned ray blocks it, and the ray still does not hit its own triangle")
+{
+    // The distance check of the watertight test (PBR 3rd ed., sec. 3.9.6)
+    // refuses a t within its rounding bound, which grows with the corners'
+    // distances over |det|. For a sliver |det| is tiny and the bound can
+    // exceed the true t: sponza-dabrovic.obj had such slivers, and shadow rays
+    // went through them (docs/performance.md, experiment 6). Here a ray leaves
+    // a floor (z = 0) straight up from (0, 0, 0), and a sliver 10.8 long and
+    // 0.001 wide, tilted along x (its plane is z = 0.01 + 0.9 x), crosses it at
+    // t = 0.01: U, V, W, det and T are those of the plane, worked out by hand.
+    const rt::triangle floor{{-4, -4, 0}, {4, -4, 0}, {0, 4, 0}, -1};
+    const rt::triangle sliver{{-5.4f, -0.0005f, 0.01f - 0.9f * 5.4f}, {5.4f, -0.0005f, 0.01f + 0.9f * 5.4f},
+                              {0, 0.0005f, 0.01f}, -1};
+    const vec3 origin = rt::offset_ray_origin(vec3(0), vec3(0, 0, 1));
+    const rt::ray up{origin, {0, 0, 1}};
+    const real t_true = real(0.01) - origin.z;
+
+    // the float bound alone: with d = +z the shear is the identity (X = x, Y = y,
+    // Z = z), so watertight_t_error gets the corners minus the origin directly
+    if (in_float) {
+        real x[3], y[3], z[3];
+        const vec3 corners[3] = {sliver.a, sliver.b, sliver.c};
+        for (int i = 0; i < 3; ++i) {
+            x[i] = corners[i].x - origin.x;
+            y[i] = corners[i].y - origin.y;
+            z[i] = corners[i].z - origin.z;
+        }
+        const real U = x[2] * y[1] - y[2] * x[1], V = x[0] * y[2] - y[0] * x[2], W = x[1] * y[0] - y[1] * x[0];
+        const real bound = rt::detail::watertight_t_error<real>(x, y, z, x, y, z, U, V, W, U + V + W);
+        MESSAGE("sliver: t = " << t_true << ", float error bound of t = " << bound);
+        CHECK(bound > t_true); // the float check alone refuses this hit
+    }
+
+    // the library: the hit at t = 0.01, whatever the path
+    rt::hit_record rec;
+    REQUIRE(rt::hit_triangle(sliver, up, 0, rt::infinity, rec));
+    CHECK(near(rec.t, t_true, real(1e-4)));
+    rt::scene s;
+    s.shapes.emplace_back(floor);
+    s.shapes.emplace_back(sliver);
+    for (int k = 0; k < 20; ++k) // padding so that the BVH has inner nodes
+        s.shapes.emplace_back(rt::triangle{{real(k), 10, 10}, {real(k) + 1, 10, 10}, {real(k), 11, 10}, -1});
+    for (rt::accelerator_kind kind : {rt::accelerator_kind::flat, rt::accelerator_kind::bvh}) {
+        const rt::accelerator world(s, kind);
+        CHECK(world.any_hit(up, 0, 5));
+        REQUIRE(world.closest_hit(up, 0, 5, rec));
+        CHECK(rec.shape == 1);
+        rt::primitive_hit scalar;
+        if (kind == rt::accelerator_kind::bvh) {
+            CHECK(world.tree().any_scalar(up, 0, 5));
+            CHECK(world.tree().closest_scalar(up, 0, 5, scalar));
+        }
+    }
+
+    // and the floor never hits itself: rays from offset points of the floor in
+    // every upward direction, and straight along it
+    std::mt19937 random(23);
+    std::uniform_real_distribution<real> unit(-1, 1);
+    std::size_t self_hits = 0;
+    for (int k = 0; k < 2000; ++k) {
+        vec3 p(0), d;
+        p.x = unit(random); // one number per statement: the same rays with every compiler
+        p.y = unit(random);
+        d.x = unit(random);
+        d.y = unit(random);
+        d.z = unit(random);
+        const vec3 start = rt::offset_ray_origin(p, vec3(0, 0, 1));
+        d.z = k % 10 == 0 ? real(1e-7) : std::fabs(d.z);
+        if (glm::dot(d, d) == 0)
+            d = vec3(0, 0, 1);
+        self_hits += rt::hit_triangle(floor, rt::ray{start, d}, 0, rt::infinity, rec) ? 1 : 0;
+    }
+    CHECK(self_hits == 0);
 }
 
 TEST_CASE("a ray spawned from a sphere hit does not hit the sphere again on its way out")
@@ -700,7 +870,8 @@ TEST_CASE("the BVH and the list return the same closest hit and the same any-hit
             rt::primitive_hit scalar_hit, simd_hit;
             const bool tree_scalar = tree.tree().closest_scalar(r, 0, rt::infinity, scalar_hit);
             const bool tree_simd = tree.tree().closest(r, 0, rt::infinity, simd_hit);
-            bool agree = list_hit == flat_hit && list_hit == tree_hit && tree_scalar == tree_simd;
+            bool agree = list_hit == flat_hit && list_hit == tree_hit && tree_scalar == tree_simd &&
+                         tree.tree().any_scalar(r, 0, rt::infinity) == tree.tree().any(r, 0, rt::infinity);
             if (agree && list_hit) {
                 ++hits;
                 agree = same_hit(from_list, from_flat) && same_hit(from_list, from_tree) &&

@@ -117,13 +117,16 @@ enum class accelerator_kind {
     automatic  ///< "auto": flat below flat_list_crossover primitives, else bvh
 };
 
-/// Below this many primitives the flat list is faster than the BVH. Measured
-/// with `stage04_triangle --crossover` (docs/stages/04-triangle.md has the
-/// table): random triangles and spheres, small (most rays miss them) and large
-/// (most rays hit one); from 6 primitives on the BVH was faster in all four
-/// cases, below it the flat list was faster in at least one (large triangles
-/// and spheres: every ray that hits pays a box test on top of the primitive).
-constexpr std::size_t flat_list_crossover = 6;
+/// Below this many primitives the flat list is faster than the BVH: the
+/// crossover that bench/groups.cpp measures (docs/performance.md, experiment 4:
+/// random spheres and triangles in the unit cube covering it about twice,
+/// primary rays, one thread, the N where the two log-log curves of ns per ray
+/// cross). With the BVH of four-triangle leaf blocks it measured 4 (3 shapes:
+/// flat 101 ns, BVH 112 ns; 5 shapes: flat 122 ns, BVH 111 ns). The older
+/// `stage04_triangle --crossover` experiment (docs/stages/04-triangle.md)
+/// gave 6 on a different mix; either way the difference is tens of ns per ray
+/// on scenes of a handful of shapes.
+constexpr std::size_t flat_list_crossover = 4;
 
 inline const char* to_string(accelerator_kind kind)
 {
@@ -234,9 +237,10 @@ private:
             refine_sphere_hit(*ball, rec);
         } else {
             // the corners as packed (the same numbers as in the shape)
-            const real* v = h.source->v;
-            fill_triangle_record(vec3(v[0], v[1], v[2]), vec3(v[3], v[4], v[5]), vec3(v[6], v[7], v[8]), r,
-                                 triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
+            const real* v = h.corners;
+            const int k = h.stride;
+            fill_triangle_record(vec3(v[0], v[k], v[2 * k]), vec3(v[3 * k], v[4 * k], v[5 * k]),
+                                 vec3(v[6 * k], v[7 * k], v[8 * k]), r, triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
             if (const triangle* tri = std::get_if<triangle>(&item))
                 rec.material = tri->material;
             else

@@ -39,10 +39,13 @@
 //    The watertight test also refuses a t that is not certainly positive given
 //    the rounding error of the computation (Physically Based Rendering, 3rd
 //    ed., sec. 3.9.6): a ray that starts on the triangle, such as a ray spawned
-//    from a hit on it, cannot hit it again at a tiny t.
+//    from a hit on it, cannot hit it again at a tiny t. That bound is loose for
+//    slivers, so a t inside it gets a second opinion in double before it is
+//    refused (detail::t_beyond_error_in_double).
 #pragma once
 
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include <glm/common.hpp>
@@ -121,10 +124,12 @@ inline bool hit_triangle_moller_trumbore(const triangle& tri, const ray& r, real
 }
 
 /// What the watertight test computes once per ray (Woop et al. 2013, sec. 3):
-/// the origin p, the axis permutation kx, ky, kz and the shear Sx, Sy, Sz.
-/// Precondition: the direction is not the zero vector.
+/// the origin p, the axis permutation kx, ky, kz and the shear Sx, Sy, Sz; the
+/// direction d is kept for the double-precision check of a tiny t (see
+/// detail::t_beyond_error_in_double). Precondition: d is not the zero vector.
 struct watertight_ray {
     real p[3] = {0, 0, 0};
+    real d[3] = {0, 0, 1};
     int kx = 0, ky = 1, kz = 2;
     real Sx = 0, Sy = 0, Sz = 1;
 };
@@ -136,6 +141,9 @@ inline watertight_ray make_watertight_ray(const ray& r)
     w.p[0] = r.origin.x;
     w.p[1] = r.origin.y;
     w.p[2] = r.origin.z;
+    w.d[0] = d.x;
+    w.d[1] = d.y;
+    w.d[2] = d.z;
     const vec3 m = glm::abs(d);
     w.kz = m.x >= m.y ? (m.x >= m.z ? 0 : 2) : (m.y >= m.z ? 1 : 2);
     w.kx = w.kz == 2 ? 0 : w.kz + 1;
@@ -153,36 +161,127 @@ inline watertight_ray make_watertight_ray(const ray& r)
 
 namespace detail {
 
+/// gamma_n (rounding.hpp) in the floating-point type F: the same bound for a
+/// computation carried out in double when rt::real is float.
+template <class F>
+constexpr F gamma_in(int n)
+{
+    constexpr F u = std::numeric_limits<F>::epsilon() / 2;
+    return (F(n) * u) / (1 - F(n) * u);
+}
+
 /// The largest of |x|, |y|, |z|.
-inline real max_abs3(real x, real y, real z)
+template <class F>
+F max_abs3(F x, F y, F z)
 {
     x = std::fabs(x);
     y = std::fabs(y);
     z = std::fabs(z);
-    const real m = x > y ? x : y;
+    const F m = x > y ? x : y;
     return m > z ? m : z;
 }
 
 /// PBR 3rd ed., sec. 3.9.6: a bound on the rounding error of the t computed by
-/// the watertight test, so that t <= bound means "possibly at or behind the
-/// origin". x, y, z are the corners translated to the ray origin and permuted;
-/// X, Y the sheared coordinates (X = x - Sx z, with |Sx|, |Sy| <= 1 because kz is
-/// the largest axis of d); Z the scaled ones (Sz z); U, V, W the edge functions.
-inline real watertight_t_error(const real x[3], const real y[3], const real z[3], const real X[3],
-                               const real Y[3], const real Z[3], real U, real V, real W, real det)
+/// the watertight test in the type F, so that t <= bound means "possibly at or
+/// behind the origin". x, y, z are the corners translated to the ray origin and
+/// permuted; X, Y the sheared coordinates (X = x - Sx z, with |Sx|, |Sy| <= 1
+/// because kz is the largest axis of d); Z the scaled ones (Sz z); U, V, W the
+/// edge functions.
+template <class F>
+F watertight_t_error(const F x[3], const F y[3], const F z[3], const F X[3], const F Y[3], const F Z[3], F U, F V,
+                     F W, F det)
 {
-    const real max_x = max_abs3(x[0], x[1], x[2]);
-    const real max_y = max_abs3(y[0], y[1], y[2]);
-    const real max_z = max_abs3(z[0], z[1], z[2]);
-    const real max_X = max_abs3(X[0], X[1], X[2]);
-    const real max_Y = max_abs3(Y[0], Y[1], Y[2]);
-    const real max_Z = max_abs3(Z[0], Z[1], Z[2]);
-    const real max_E = max_abs3(U, V, W);
-    const real delta_x = gamma_n(5) * (max_x + max_z);
-    const real delta_y = gamma_n(5) * (max_y + max_z);
-    const real delta_z = gamma_n(3) * max_Z;
-    const real delta_e = 2 * (gamma_n(2) * max_X * max_Y + delta_y * max_X + delta_x * max_Y);
-    return 3 * (gamma_n(3) * max_E * max_Z + delta_e * max_Z + delta_z * max_E) * std::fabs(1 / det);
+    const F max_x = max_abs3(x[0], x[1], x[2]);
+    const F max_y = max_abs3(y[0], y[1], y[2]);
+    const F max_z = max_abs3(z[0], z[1], z[2]);
+    const F max_X = max_abs3(X[0], X[1], X[2]);
+    const F max_Y = max_abs3(Y[0], Y[1], Y[2]);
+    const F max_Z = max_abs3(Z[0], Z[1], Z[2]);
+    const F max_E = max_abs3(U, V, W);
+    const F delta_x = gamma_in<F>(5) * (max_x + max_z);
+    const F delta_y = gamma_in<F>(5) * (max_y + max_z);
+    const F delta_z = gamma_in<F>(3) * max_Z;
+    const F delta_e = 2 * (gamma_in<F>(2) * max_X * max_Y + delta_y * max_X + delta_x * max_Y);
+    return 3 * (gamma_in<F>(3) * max_E * max_Z + delta_e * max_Z + delta_z * max_E) * std::fabs(1 / det);
+}
+
+/// The sliver case of the distance check. The bound of watertight_t_error
+/// grows with the corners' distances over |det|, and |det| (twice the area of
+/// the sheared triangle) is tiny for a sliver: measured on sponza-dabrovic.obj
+/// (docs/performance.md, experiment 6), a shadow ray meets a sliver 10.8 units
+/// long and 0.015 wide at t = 0.0255 where the float bound is 0.0282, and the
+/// light leaked through. When the float t is within its bound, the whole test
+/// (translation, shear, edge functions, det, T) is redone in double from the
+/// float corners and ray, with the bound of the same formula in double, 2^29
+/// times smaller: a t that is truly positive by more than that is accepted. A
+/// ray that starts on the triangle, or behind it as a ray spawned from a hit
+/// does (spawn_ray, offset_ray_origin), has an exact t <= 0, and the double
+/// bound still refuses it. `v` holds the corners: coordinate j (a.x a.y a.z
+/// b.x ...) at v[j * stride].
+inline bool t_beyond_error_in_double(const watertight_ray& w, const real* v, int stride)
+{
+    const int kx = w.kx, ky = w.ky, kz = w.kz;
+    const double Sz = 1 / double(w.d[kz]);
+    const double Sx = double(w.d[kx]) * Sz, Sy = double(w.d[ky]) * Sz;
+    double x[3], y[3], z[3], X[3], Y[3], Z[3];
+    for (int i = 0; i < 3; ++i) {
+        x[i] = double(v[(3 * i + kx) * stride]) - double(w.p[kx]);
+        y[i] = double(v[(3 * i + ky) * stride]) - double(w.p[ky]);
+        z[i] = double(v[(3 * i + kz) * stride]) - double(w.p[kz]);
+        X[i] = x[i] - Sx * z[i];
+        Y[i] = y[i] - Sy * z[i];
+        Z[i] = Sz * z[i];
+    }
+    const double U = X[2] * Y[1] - Y[2] * X[1];
+    const double V = X[0] * Y[2] - Y[0] * X[2];
+    const double W = X[1] * Y[0] - Y[1] * X[0];
+    const double det = U + V + W;
+    if (det == 0)
+        return false;
+    const double t = (U * Z[0] + V * Z[1] + W * Z[2]) / det;
+    return t > watertight_t_error<double>(x, y, z, X, Y, Z, U, V, W, det);
+}
+
+/// The watertight test's state after the edge functions: the corners
+/// translated to the ray origin and permuted (x, y, z: kx, ky, kz), sheared
+/// (X, Y) and the edge functions U, V, W. The scalar test and the SIMD leaf
+/// test of bvh.hpp fill it with the same arithmetic and hand it to
+/// watertight_finish, so the two decide every hit by the same code.
+struct sheared_triangle {
+    real x[3], y[3], z[3];
+    real X[3], Y[3];
+    real U, V, W;
+};
+
+/// From the edge functions to the hit (Woop et al. 2013, fig. 6): det, T and
+/// t, the range [tmin, tmax], and the distance check of PBR sec. 3.9.6 with
+/// its double-precision second opinion (t_beyond_error_in_double; `v` and
+/// `stride` give it the corners). Precondition: U, V, W have no mixed signs.
+inline bool watertight_finish(const watertight_ray& w, const sheared_triangle& s, const real* v, int stride,
+                              real tmin, real tmax, triangle_hit& hit)
+{
+    const real det = s.U + s.V + s.W;
+    if (det == 0) // the ray lies in the triangle's plane, or the triangle has no area
+        return false;
+    const real Z[3] = {w.Sz * s.z[0], w.Sz * s.z[1], w.Sz * s.z[2]};
+    const real T = s.U * Z[0] + s.V * Z[1] + s.W * Z[2];
+    const real inv_det = 1 / det;
+    const real t = T * inv_det;
+    if (!(t >= tmin && t <= tmax)) // also refuses NaN
+        return false;
+    // the conservative check of PBR 3rd ed., sec. 3.9.6 (see watertight_t_error),
+    // and for float a second opinion in double when it refuses
+    if (t <= watertight_t_error<real>(s.x, s.y, s.z, s.X, s.Y, Z, s.U, s.V, s.W, det)) {
+        if constexpr (!std::is_same_v<real, float>)
+            return false;
+        else if (!t_beyond_error_in_double(w, v, stride))
+            return false;
+    }
+    hit.t = t;
+    hit.b0 = s.U * inv_det;
+    hit.b1 = s.V * inv_det;
+    hit.b2 = s.W * inv_det;
+    return true;
 }
 
 } // namespace detail
@@ -196,13 +295,15 @@ inline bool intersect_watertight(const watertight_ray& w, const real* v, real tm
 {
     const int kx = w.kx, ky = w.ky, kz = w.kz;
     // A, B, C translated to the ray origin, permuted and sheared
-    const real Az = v[kz] - w.p[kz], Bz = v[3 + kz] - w.p[kz], Cz = v[6 + kz] - w.p[kz];
-    const real Ax = (v[kx] - w.p[kx]) - w.Sx * Az;
-    const real Ay = (v[ky] - w.p[ky]) - w.Sy * Az;
-    const real Bx = (v[3 + kx] - w.p[kx]) - w.Sx * Bz;
-    const real By = (v[3 + ky] - w.p[ky]) - w.Sy * Bz;
-    const real Cx = (v[6 + kx] - w.p[kx]) - w.Sx * Cz;
-    const real Cy = (v[6 + ky] - w.p[ky]) - w.Sy * Cz;
+    detail::sheared_triangle s;
+    for (int i = 0; i < 3; ++i) {
+        s.x[i] = v[3 * i + kx] - w.p[kx];
+        s.y[i] = v[3 * i + ky] - w.p[ky];
+        s.z[i] = v[3 * i + kz] - w.p[kz];
+        s.X[i] = s.x[i] - w.Sx * s.z[i];
+        s.Y[i] = s.y[i] - w.Sy * s.z[i];
+    }
+    const real Ax = s.X[0], Ay = s.Y[0], Bx = s.X[1], By = s.Y[1], Cx = s.X[2], Cy = s.Y[2];
 
     // scaled barycentric coordinates: the edge functions
     real U, V, W;
@@ -235,30 +336,10 @@ inline bool intersect_watertight(const watertight_ray& w, const real* v, real tm
     }
     if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
         return false;
-    const real det = U + V + W;
-    if (det == 0) // the ray lies in the triangle's plane, or the triangle has no area
-        return false;
-
-    const real T = U * (w.Sz * Az) + V * (w.Sz * Bz) + W * (w.Sz * Cz);
-    const real inv_det = 1 / det;
-    const real t = T * inv_det;
-    if (!(t >= tmin && t <= tmax)) // also refuses NaN
-        return false;
-    { // the conservative check of PBR 3rd ed., sec. 3.9.6 (see watertight_t_error)
-        const real x[3] = {v[kx] - w.p[kx], v[3 + kx] - w.p[kx], v[6 + kx] - w.p[kx]};
-        const real y[3] = {v[ky] - w.p[ky], v[3 + ky] - w.p[ky], v[6 + ky] - w.p[ky]};
-        const real z[3] = {Az, Bz, Cz};
-        const real X[3] = {Ax, Bx, Cx};
-        const real Y[3] = {Ay, By, Cy};
-        const real Z[3] = {w.Sz * Az, w.Sz * Bz, w.Sz * Cz};
-        if (t <= detail::watertight_t_error(x, y, z, X, Y, Z, U, V, W, det))
-            return false;
-    }
-    hit.t = t;
-    hit.b0 = U * inv_det;
-    hit.b1 = V * inv_det;
-    hit.b2 = W * inv_det;
-    return true;
+    s.U = U;
+    s.V = V;
+    s.W = W;
+    return detail::watertight_finish(w, s, v, 1, tmin, tmax, hit);
 }
 
 /// The library's default ray-triangle intersection: the watertight test, with
