@@ -404,6 +404,7 @@ TEST_CASE("limits: one triangle budget covers all of a scene's meshes")
     CAPTURE(message);
     CHECK(starts_with(message, "bad.scene:3:6: expected a loadable OBJ mesh"));
     CHECK(has(message, "expected at most 1 triangles"));
+    CHECK(has(message, "raise obj_limits::max_triangles (load_options::obj for a scene)"));
     options.obj.max_triangles = 6;
     CHECK(scene_error(three, folder.path(), options).empty());
 }

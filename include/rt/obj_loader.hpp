@@ -105,8 +105,9 @@ public:
         return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
     }
 
-    /// A finite number, at the precision of rt::real (see check_number_word).
-    real number(const std::string& what)
+    /// A finite number, at the precision of rt::real (see check_number_word);
+    /// `move_on` false: only looks at it.
+    real number(const std::string& what, bool move_on = true)
     {
         if (done())
             throw unexpected("a number for " + what);
@@ -123,8 +124,10 @@ public:
             throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
         if ((status != std::errc() && status != std::errc::result_out_of_range) || end != stop)
             throw unexpected("a number for " + what);
-        next_ = stop;
-        skip_blanks();
+        if (move_on) {
+            next_ = stop;
+            skip_blanks();
+        }
         // check_number_word refused every overflow, so an out-of-range result is
         // an underflow: a magnitude below the smallest double, 0 at any precision
         return status == std::errc() ? real(value) : real(0);
@@ -375,7 +378,7 @@ inline std::string read_text(const std::filesystem::path& path, const std::strin
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_bytes)
         throw error(at, "expected " + what + " file of at most " + std::to_string(max_bytes) + " bytes, found " +
-                            std::to_string(size) + "; raise obj_limits::max_bytes");
+                            std::to_string(size) + "; raise obj_limits::max_bytes (load_options::obj for a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw error(at, "expected a readable " + what + " file, found one that cannot be opened: '" + name +
@@ -575,7 +578,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 out.triangles += std::size_t(corners - 2);
                 if (out.triangles > limits.max_triangles)
                     throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
-                                      "more", "raise obj_limits::max_triangles");
+                                      "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
             }
         } else if (keyword == "vw") {
             // tinyobjloader's skin weights "vw vertex joint weight joint weight ...":
@@ -584,11 +587,12 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             // and fails on a negative one without saying where. rt ignores them.
             line.number("the skin-weight vertex");
             for (int k = 0; !line.at_end(); ++k) {
-                const source_location at = line.here();
-                const real value = line.number(k % 2 == 0 ? "a joint id" : "a joint weight");
-                if (k % 2 == 0 && !(value >= 0 && value < real(1 << 30)))
-                    throw parse_error(at, "a joint id from 0 to 2^30", "'" + printable(std::to_string(value), 24) + "'",
-                                      "'vw vertex joint weight ...' names joints by number");
+                if (k % 2 == 0 && !line.done()) {
+                    const real value = line.number("a joint id", false);
+                    if (!(value >= 0 && value < real(1 << 30)))
+                        throw line.unexpected("a joint id from 0 to 2^30", "'vw vertex joint weight ...' names joints by number");
+                }
+                line.number(k % 2 == 0 ? "a joint id" : "a joint weight");
             }
         } else if (keyword == "t") {
             // tinyobjloader's tags "t name ints/reals/strings value ...": it
