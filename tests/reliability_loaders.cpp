@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
@@ -391,6 +392,27 @@ TEST_CASE("limits: the triangle limit is checked per face line, before tinyobjlo
     CHECK(has(message, "obj_limits::max_triangles"));
     limits.max_triangles = 4;
     CHECK(obj_error(obj, "", limits).empty());
+}
+
+TEST_CASE("limits: the corners of one face are limited, before tinyobjloader's ear clipping")
+{
+    rt::obj_limits limits;
+    limits.max_face_corners = 4;
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -1 1 0\nf 1 2 3 4\nf 1 2 3 4 5\n";
+    const std::string message = obj_error(obj, "", limits);
+    CHECK(starts_with(message, "m.obj:7:1: expected a face of at most 4 corners, found 5"));
+    CHECK(has(message, "raise obj_limits::max_face_corners"));
+    limits.max_face_corners = 5;
+    CHECK(obj_error(obj, "", limits).empty());
+    // the default: 1024 corners load, 1025 do not
+    std::string circle;
+    for (int i = 0; i < 1025; ++i)
+        circle += "v " + std::to_string(std::cos(i * 0.006)) + " " + std::to_string(std::sin(i * 0.006)) + " 0\n";
+    std::string face = "f";
+    for (int i = 1; i <= 1024; ++i)
+        face += " " + std::to_string(i);
+    CHECK(obj_error(circle + face + "\n").empty());
+    CHECK(starts_with(obj_error(circle + face + " 1025\n"), "m.obj:1026:1: expected a face of at most 1024 corners, found 1025"));
 }
 
 TEST_CASE("limits: one triangle budget covers all of a scene's meshes")

@@ -73,6 +73,10 @@ struct obj_result {
 struct obj_limits {
     std::size_t max_triangles = std::size_t(1) << 26;  ///< 67 million
     std::uintmax_t max_bytes = std::uintmax_t(1) << 32; ///< 4 GiB of OBJ text
+    /// corners of one face: tinyobjloader's ear clipping takes time in the
+    /// square of them (measured: 7 ms for 1000, 0.14 s for 4000, so a
+    /// one-line face of a million corners would take hours)
+    std::size_t max_face_corners = 1024;
 };
 
 namespace detail {
@@ -574,6 +578,10 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 if (corners < 3)
                     throw parse_error(keyword_at, "a face of at least 3 corners", std::to_string(corners),
                                       "'f' lists three or more vertex indices");
+                if (std::size_t(corners) > limits.max_face_corners)
+                    throw parse_error(keyword_at, "a face of at most " + std::to_string(limits.max_face_corners) + " corners",
+                                      std::to_string(corners),
+                                      "raise obj_limits::max_face_corners (load_options::obj for a scene)");
                 ++out.polygons;
                 out.triangles += std::size_t(corners - 2);
                 if (out.triangles > limits.max_triangles)
