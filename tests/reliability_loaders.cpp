@@ -372,6 +372,15 @@ TEST_CASE("review: a missing MTL file is an error at the mtllib line")
     CHECK(at_same_line(obj_error("mtllib missing.mtl\n" + triangle_obj),
                       "m.obj:1: expected the material library it names, found no such file 'missing.mtl'"));
     CHECK(at_same_line(obj_error("mtllib   \n" + triangle_obj), "m.obj:1: expected a material library file name"));
+    // A library named again, however spelled, is read once: its materials are not added again.
+    CHECK(obj_error("mtllib m.mtl ./m.mtl\nmtllib .//m.mtl\n" + triangle_obj, "newmtl red\nKd 1 0 0\n").empty());
+    {
+        const scratch again;
+        again.write("m.mtl", "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\n");
+        fs::create_directories(again.path() / "sub");
+        const fs::path path = again.write("m.obj", "mtllib m.mtl ./m.mtl\nmtllib .//m.mtl sub/../m.mtl\n" + triangle_obj);
+        CHECK(rt::load_obj(path).materials.size() == 2);
+    }
     // Present, it loads, and its materials reach the mesh.
     const scratch folder;
     folder.write("m.mtl", "newmtl red\nKd 1 0 0\n");

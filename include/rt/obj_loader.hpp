@@ -617,9 +617,15 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             while (!line.done()) {
                 const source_location at = line.here();
                 const std::string file = line.word();
-                if (std::find(loaded_libraries.begin(), loaded_libraries.end(), file) != loaded_libraries.end())
+                // each file once, however spelled ("m.mtl", "./m.mtl", ".//m.mtl"):
+                // a file read again would add all its materials again, so a
+                // short OBJ line could multiply a large MTL file in memory
+                std::error_code ec;
+                const std::filesystem::path canonical = std::filesystem::weakly_canonical(folder / file, ec);
+                const std::string key = ec ? (folder / file).lexically_normal().string() : canonical.string();
+                if (std::find(loaded_libraries.begin(), loaded_libraries.end(), key) != loaded_libraries.end())
                     continue;
-                loaded_libraries.push_back(file);
+                loaded_libraries.push_back(key);
                 read_mtl(folder / file, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
