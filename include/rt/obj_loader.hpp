@@ -115,7 +115,7 @@ public:
     {
         if (done())
             throw unexpected("a number for " + what);
-        check_number_word(" for " + what);
+        check_number_word(what);
         const char* start = next_;
         if (*start == '+')
             ++start;
@@ -151,7 +151,7 @@ public:
     ///    (C++17 [conv.double]/1): the magnitude must be at most the largest
     ///    rt::real (about 3.4e38 for float). A smaller magnitude than the
     ///    smallest float is no error: it rounds to 0 (or a subnormal).
-    /// `what` (" for the vertex x", or empty) completes "expected a number".
+    /// `what` ("the vertex x", or empty) says what the number is for.
     /// `prefix`: check a word that only starts like a number too ("1e999x"),
     /// as tinyobjloader reads it; otherwise only a word that is one number
     /// (not a file name such as "1e999.png").
@@ -180,10 +180,11 @@ public:
         }
         if (!prefix && p != end_ && *p != ' ' && *p != '\t')
             return;
+        const auto a_number = [&] { return what.empty() ? std::string("a number") : "a number for " + what; };
         if (mantissa_end - mantissa > 300)
-            throw unexpected("a number" + what + " of at most 300 digits", "write it shorter, with an exponent");
+            throw unexpected(a_number() + " of at most 300 digits", "write it shorter, with an exponent");
         if (exponent > 400)
-            throw unexpected("a number" + what + " with an exponent from -400 to 400",
+            throw unexpected(a_number() + " with an exponent from -400 to 400",
                              "no float needs more; tinyobjloader cannot read a longer exponent");
         double value = 0;
         const char* first = next_ != end_ && *next_ == '+' ? next_ + 1 : next_;
@@ -193,7 +194,7 @@ public:
         if (overflow || (status == std::errc() && std::fabs(value) > largest_number())) {
             std::ostringstream limit;
             limit << largest_number();
-            throw unexpected("a number" + what + " within +-" + limit.str(), "use smaller units");
+            throw unexpected(a_number() + " within +-" + limit.str(), "use smaller units");
         }
         (void)end;
     }
