@@ -172,9 +172,21 @@ TEST_CASE("fuzz: a number tinyobjloader would overflow on is an error at its lin
     // because tinyobjloader converts every coordinate to float.
     CHECK(starts_with(obj_error("v 1e39 0 0\n"), "m.obj:1:3: expected a number for the vertex x within +-3.40282e+38, found '1e39'"));
     CHECK(starts_with(obj_error("v 0 0 0 +.e2147483648\n"), "m.obj:1:9: expected a number for a vertex's extra value (w or colour) with an exponent"));
-    // 301 digits before the point: tinyobjloader's mantissa sum nears double's end.
+    // tinyobjloader adds up a mantissa's digits in a double, inf past about
+    // 308 of them, and rt takes normals and texture coordinates from it: 310
+    // ones times 1e-309 (about 10/9) became an infinite normal. At most 300 digits.
     CHECK(starts_with(obj_error("v 0 0 " + std::string(301, '1') + "e-300\n"),
                       "m.obj:1:7: expected a number for the vertex z of at most 300 digits"));
+    CHECK(starts_with(obj_error(triangle_obj + "vn " + std::string(310, '1') + "e-309 0 1\n"),
+                      "m.obj:5:4: expected a number for the normal x of at most 300 digits"));
+    {
+        const scratch folder;
+        const fs::path path = folder.write(
+            "n.obj", triangle_obj + "vn " + std::string(300, '1') + "e-299 0 1\nf 1//1 2//1 3//1\n"); // 1.111... = 10/9
+        const rt::obj_result loaded = rt::load_obj(path);
+        REQUIRE(loaded.geometry.normals.size() == 1);
+        CHECK(loaded.geometry.normals[0].x == doctest::Approx(10.0 / 9.0).epsilon(1e-6));
+    }
     // The same in an MTL file, and in words tinyobjloader reads as numbers elsewhere.
     CHECK(starts_with(obj_error("mtllib m.mtl\n" + triangle_obj, "newmtl a\nKd 1 1e40 0\n"),
                       "m.mtl:2:6: expected a number for Kd g within +-3.40282e+38"));
