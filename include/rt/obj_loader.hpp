@@ -23,10 +23,13 @@
 // handed to it by name, so usemtl picks the same materials in both.
 //
 // The check also keeps tinyobjloader (2.0.0rc10) away from what it cannot
-// read safely (docs/reliability.md, found by the fuzzers): a number must fit
-// a float, with an exponent from -400 to 400 and at most 300 digits; a
-// skin-weight joint id ("vw") must be from 0 to 2^30; a tag ("t") may claim
-// no more values than its line holds. Lines end at LF, CR LF or a lone CR.
+// read safely (docs/reliability.md, "Decisions"): every number, also in the
+// statements rt ignores, must fit a float, with an exponent from -400 to 400
+// and at most 300 digits; a skin-weight joint id ("vw") must be from 0 to
+// 2^30; a tag ("t") may claim no more values than its line holds; a face has
+// at most obj_limits::max_face_corners corners; an MTL file is read once
+// however it is spelled. Lines end at LF, CR LF or a lone CR, as tinyobjloader
+// splits them.
 //
 // The mesh stores only what the file provides: normals (texture coordinates)
 // only when the faces refer to them. Zero-area triangles are dropped and
