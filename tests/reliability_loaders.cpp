@@ -136,6 +136,18 @@ TEST_CASE("fuzz: tinyobjloader's warnings never reach a message raw (control byt
     CHECK(is_one_text_line(message));
 }
 
+TEST_CASE("fuzz: bytes inside a face corner are masked in the message, which says what an index is")
+{
+    // fuzz_scene_obj (main, ecc34de): the raw bytes of a corner came back in the message.
+    const std::string message = obj_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1\xe1\xcd\xdf\xcc 2 3\n");
+    CAPTURE(message);
+    CHECK(starts_with(message, "m.obj:4:3: expected a whole-number index, found '1" + std::string(4, '?') + "'"));
+    CHECK(is_one_text_line(message));
+    // 0 is a number, but not an index; a number beyond long is not an index either
+    CHECK(starts_with(obj_error("v 0 0 0\nf 1 -0 1\n"), "m.obj:2:5: expected an index other than 0 (OBJ counts from 1), found '-0'"));
+    CHECK(starts_with(obj_error("v 0 0 0\nf 1 1 99999999999999999999\n"), "m.obj:2:7: expected a whole-number index"));
+}
+
 TEST_CASE("fuzz: a byte that is not text is rejected anywhere in a word, not only at its start")
 {
     // fuzz_scene, 7 runs: "g\xfbld" was accepted as a material name and echoed

@@ -294,7 +294,10 @@ public:
                 ++slash;
             if (slash != p) {
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
-                if (status != std::errc() || end != slash || c.index[part] == 0)
+                if (status != std::errc() || end != slash)
+                    throw parse_error({file_, number_, c.column[part]}, "a whole-number index",
+                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                if (c.index[part] == 0)
                     throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
                                       "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
             } else if (part == 0) {
