@@ -22,6 +22,15 @@
 // diagonal, larger polygons by ear clipping); the MTL files are parsed here and
 // handed to it by name, so usemtl picks the same materials in both.
 //
+// The check also keeps tinyobjloader (2.0.0rc10) away from what it cannot
+// read safely (docs/reliability.md, "Decisions"): every number, also in the
+// statements rt ignores, must fit a float, with an exponent from -400 to 400
+// and at most 300 digits; a skin-weight joint id ("vw") must be from 0 to
+// 2^30; a tag ("t") may claim no more values than its line holds; a face has
+// at most obj_limits::max_face_corners corners; an MTL file is read once
+// however it is spelled. Lines end at LF, CR LF or a lone CR, as tinyobjloader
+// splits them.
+//
 // The mesh stores only what the file provides: normals (texture coordinates)
 // only when the faces refer to them. Zero-area triangles are dropped and
 // counted in mesh::dropped_degenerate. MTL colours map to rt::material: Ka ka
@@ -38,6 +47,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <streambuf>
@@ -66,6 +76,10 @@ struct obj_result {
 struct obj_limits {
     std::size_t max_triangles = std::size_t(1) << 26;  ///< 67 million
     std::uintmax_t max_bytes = std::uintmax_t(1) << 32; ///< 4 GiB of OBJ text
+    /// corners of one face: tinyobjloader's ear clipping takes time in the
+    /// square of them (measured: 7 ms for 1000, 0.14 s for 4000, so a
+    /// one-line face of a million corners would take hours)
+    std::size_t max_face_corners = 1024;
 };
 
 namespace detail {
@@ -98,26 +112,157 @@ public:
         return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
     }
 
-    /// A finite number, at the precision of rt::real.
-    real number(const std::string& what)
+    /// A finite number, at the precision of rt::real (see check_number_word);
+    /// `move_on` false: only looks at it.
+    real number(const std::string& what, bool move_on = true)
     {
         if (done())
             throw unexpected("a number for " + what);
+        check_number_word(what);
         const char* start = next_;
         if (*start == '+')
             ++start;
         const char* stop = start;
         while (stop != end_ && *stop != ' ' && *stop != '\t')
             ++stop;
-        real value = 0;
+        double value = 0;
         const auto [end, status] = std::from_chars(start, stop, value);
-        if (status != std::errc() || end != stop)
-            throw unexpected("a number for " + what);
-        if (!std::isfinite(value))
+        if (status == std::errc() && end == stop && !std::isfinite(value))
             throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
-        next_ = stop;
+        if ((status != std::errc() && status != std::errc::result_out_of_range) || end != stop)
+            throw unexpected("a number for " + what);
+        if (move_on) {
+            next_ = stop;
+            skip_blanks();
+        }
+        // check_number_word refused every overflow, so an out-of-range result is
+        // an underflow: a magnitude below the smallest double, 0 at any precision
+        return status == std::errc() ? real(value) : real(0);
+    }
+
+    /// Checks the number the next word starts with, if it starts like one for
+    /// tinyobjloader's tryParseDouble ([+-], then a digit or '.'), and does not
+    /// move on. tinyobjloader reads such a prefix of any word it takes for a
+    /// number (coordinates, skin weights, tag values) in three steps that go
+    /// wrong on numbers no float holds anyway, so those are refused here first:
+    ///  - it adds up the exponent's digits in an int, which overflows past
+    ///    2147483647 (undefined behaviour, C++17 [expr]/4; UBSan found it with
+    ///    "0e2147483648"): the exponent must be from -400 to 400;
+    ///  - it adds up the mantissa's digits in a double, inf past 308 digits:
+    ///    the mantissa must be at most 300 characters;
+    ///  - it converts the double to float, undefined beyond float's range
+    ///    (C++17 [conv.double]/1): the magnitude must be at most the largest
+    ///    rt::real (about 3.4e38 for float). A smaller magnitude than the
+    ///    smallest float is no error: it rounds to 0 (or a subnormal).
+    /// `what` ("the vertex x", or empty) says what the number is for.
+    /// `prefix`: check a word that only starts like a number too ("1e999x"),
+    /// as tinyobjloader reads it; otherwise only a word that is one number
+    /// (not a file name such as "1e999.png").
+    void check_number_word(const std::string& what, bool prefix = true) const
+    {
+        const auto digit = [&](const char* at) { return at != end_ && *at >= '0' && *at <= '9'; };
+        const char* p = next_;
+        if (p != end_ && (*p == '+' || *p == '-'))
+            ++p;
+        if (!(digit(p) || (p != end_ && *p == '.')))
+            return; // not a number to tinyobjloader; the callers say what they expected
+        const char* mantissa = p;
+        while (digit(p))
+            ++p;
+        if (p != end_ && *p == '.')
+            for (++p; digit(p); ++p) {
+            }
+        const char* const mantissa_end = p;
+        long exponent = 0;
+        if (p != end_ && (*p == 'e' || *p == 'E')) {
+            ++p;
+            if (p != end_ && (*p == '+' || *p == '-'))
+                ++p;
+            for (; digit(p); ++p)
+                exponent = std::min(exponent * 10 + (*p - '0'), 100000L);
+        }
+        if (!prefix && p != end_ && *p != ' ' && *p != '\t')
+            return;
+        const auto a_number = [&] { return what.empty() ? std::string("a number") : "a number for " + what; };
+        if (mantissa_end - mantissa > 300)
+            throw unexpected(a_number() + " of at most 300 digits", "write it shorter, with an exponent");
+        if (exponent > 400)
+            throw unexpected(a_number() + " with an exponent from -400 to 400",
+                             "no float needs more; tinyobjloader cannot read a longer exponent");
+        double value = 0;
+        const char* first = next_ != end_ && *next_ == '+' ? next_ + 1 : next_;
+        const auto [end, status] = std::from_chars(first, p, value);
+        const bool overflow = status == std::errc::result_out_of_range && p != mantissa_end &&
+                              std::find(mantissa_end, p, '-') == p; // out of range with a positive exponent
+        if (overflow || (status == std::errc() && std::fabs(value) > largest_number())) {
+            std::ostringstream limit;
+            limit << largest_number();
+            throw unexpected(a_number() + " within +-" + limit.str(), "use smaller units");
+        }
+        (void)end;
+    }
+
+    /// Checks every word left on the line that is a number, or with `prefix`
+    /// starts like one (see check_number_word), comments included:
+    /// tinyobjloader does not stop at a '#' after the first word.
+    void check_number_words(bool prefix)
+    {
+        while (next_ != end_) {
+            check_number_word("", prefix);
+            word();
+        }
+    }
+
+    bool at_end() const { return next_ == end_; }
+
+    /// The rest of an OBJ tag line "t name ints/reals/strings value ...":
+    /// the three counts, read as tinyobjloader's parseTagTriple reads them
+    /// (atoi of each part, clamped to 0..8192), may claim no more values than
+    /// there are words after them; the values that are numbers are checked.
+    void check_tag()
+    {
+        word(); // the tag's name
+        const source_location at = here();
+        const char* p = next_;
+        long claimed = 0;
+        for (int part = 0; part < 3; ++part) {
+            // atoi: blanks, a sign, digits (saturated here)
+            while (p != end_ && (*p == ' ' || *p == '\t'))
+                ++p;
+            const bool negative = p != end_ && *p == '-';
+            if (p != end_ && (*p == '+' || *p == '-'))
+                ++p;
+            long count = 0;
+            for (; p != end_ && *p >= '0' && *p <= '9'; ++p)
+                count = std::min(count * 10 + (*p - '0'), 8192L);
+            claimed += negative ? 0 : count;
+            while (p != end_ && (part == 2 || *p != '/') && *p != ' ' && *p != '\t')
+                ++p;
+            if (p == end_ || *p != '/')
+                break;
+            ++p;
+        }
+        next_ = p;
         skip_blanks();
-        return value;
+        long held = 0;
+        for (const char* q = next_; q != end_;) {
+            ++held;
+            while (q != end_ && *q != ' ' && *q != '\t')
+                ++q;
+            while (q != end_ && (*q == ' ' || *q == '\t'))
+                ++q;
+        }
+        if (claimed > held)
+            throw parse_error(at, "a tag with at most " + std::to_string(held) + " value(s), as many as follow",
+                              "one that claims " + std::to_string(claimed),
+                              "'t name ints/reals/strings value ...' counts the values on its line");
+        check_number_words(true);
+    }
+
+    /// The largest magnitude both rt::real and tinyobjloader's real_t hold.
+    static double largest_number()
+    {
+        return std::min(double(std::numeric_limits<real>::max()), double(std::numeric_limits<tinyobj::real_t>::max()));
     }
 
     bool number_follows() const
@@ -149,7 +294,10 @@ public:
                 ++slash;
             if (slash != p) {
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
-                if (status != std::errc() || end != slash || c.index[part] == 0)
+                if (status != std::errc() || end != slash)
+                    throw parse_error({file_, number_, c.column[part]}, "a whole-number index",
+                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                if (c.index[part] == 0)
                     throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
                                       "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
             } else if (part == 0) {
@@ -171,7 +319,7 @@ public:
 private:
     void skip_blanks()
     {
-        while (next_ != end_ && (*next_ == ' ' || *next_ == '\t' || *next_ == '\r'))
+        while (next_ != end_ && (*next_ == ' ' || *next_ == '\t'))
             ++next_;
     }
 
@@ -194,7 +342,9 @@ private:
 };
 
 /// Calls `each(line, number)` for every line of `text` (without the end of
-/// line), after checking that it is text.
+/// line), after checking that it is text. A line ends at LF, CR LF or a lone
+/// CR (classic Mac OS files), as tinyobjloader's safeGetline splits them, so
+/// that the line numbers here are the lines tinyobjloader reads.
 template <class Each>
 void for_each_line(const std::string& text, const std::string& file, Each&& each)
 {
@@ -202,17 +352,22 @@ void for_each_line(const std::string& text, const std::string& file, Each&& each
     const char* const end = p + text.size();
     int number = 0;
     while (p != end) {
+        if (number == std::numeric_limits<int>::max())
+            throw error(source_location{file, number}, "expected at most " + std::to_string(number) +
+                                                           " lines, found more; split the file");
         ++number;
         const char* stop = p;
-        while (stop != end && *stop != '\n') {
+        while (stop != end && *stop != '\n' && *stop != '\r') {
             const unsigned char c = static_cast<unsigned char>(*stop);
-            if (c < 32 && c != '\t' && c != '\r')
+            if (c < 32 && c != '\t')
                 throw parse_error({file, number, int(stop - p) + 1}, "text",
                                   "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
             ++stop;
         }
         obj_line line(file, number, p, stop);
         each(line, number);
+        if (stop != end && *stop == '\r' && stop + 1 != end && stop[1] == '\n')
+            ++stop; // CR LF is one line break
         p = stop == end ? end : stop + 1;
     }
 }
@@ -234,7 +389,7 @@ inline std::string read_text(const std::filesystem::path& path, const std::strin
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     if (!ec && size > max_bytes)
         throw error(at, "expected " + what + " file of at most " + std::to_string(max_bytes) + " bytes, found " +
-                            std::to_string(size) + "; raise obj_limits::max_bytes");
+                            std::to_string(size) + "; raise obj_limits::max_bytes (load_options::obj for a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw error(at, "expected a readable " + what + " file, found one that cannot be opened: '" + name +
@@ -278,8 +433,10 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
         }
         const bool colour = keyword == "Ka" || keyword == "Kd" || keyword == "Ks";
         const bool known = colour || keyword == "Ns" || keyword == "illum";
-        if (!known)
-            return; // Ke, Ni, d, Tr, maps ...: not used by rt
+        if (!known) { // Ke, Ni, d, Tr, maps ...: not used by rt, but their numbers must fit a float too
+            line.check_number_words(false);
+            return;
+        }
         if (entries.empty())
             throw parse_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
                               "every material starts with newmtl");
@@ -428,12 +585,38 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 if (corners < 3)
                     throw parse_error(keyword_at, "a face of at least 3 corners", std::to_string(corners),
                                       "'f' lists three or more vertex indices");
+                if (std::size_t(corners) > limits.max_face_corners)
+                    throw parse_error(keyword_at, "a face of at most " + std::to_string(limits.max_face_corners) + " corners",
+                                      std::to_string(corners),
+                                      "raise obj_limits::max_face_corners (load_options::obj for a scene)");
                 ++out.polygons;
                 out.triangles += std::size_t(corners - 2);
                 if (out.triangles > limits.max_triangles)
                     throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
-                                      "more", "raise obj_limits::max_triangles");
+                                      "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
             }
+        } else if (keyword == "vw") {
+            // tinyobjloader's skin weights "vw vertex joint weight joint weight ...":
+            // it reads each joint id as a float and converts it to int, undefined
+            // past INT_MAX (C++17 [conv.fpint]/1; UBSan found it with "2147483648"),
+            // and fails on a negative one without saying where. rt ignores them.
+            line.number("the skin-weight vertex");
+            for (int k = 0; !line.at_end(); ++k) {
+                if (k % 2 == 0 && !line.done()) {
+                    const real value = line.number("a joint id", false);
+                    if (!(value >= 0 && value < real(1 << 30)))
+                        throw line.unexpected("a joint id from 0 to 2^30", "'vw vertex joint weight ...' names joints by number");
+                }
+                line.number(k % 2 == 0 ? "a joint id" : "a joint weight");
+            }
+        } else if (keyword == "t") {
+            // tinyobjloader's tags "t name ints/reals/strings value ...": it
+            // allocates as many values as the three counts claim (each up to
+            // 8192) before it reads them, a third of a megabyte for a line of 20
+            // bytes; here a tag claims no more values than its line holds.
+            line.check_tag();
+        } else if (keyword == "g" || keyword == "o" || keyword == "s") {
+            // group and object names, smoothing groups: not used by rt
         } else if (keyword == "mtllib") {
             any_library = true;
             if (line.done())
@@ -441,9 +624,15 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             while (!line.done()) {
                 const source_location at = line.here();
                 const std::string file = line.word();
-                if (std::find(loaded_libraries.begin(), loaded_libraries.end(), file) != loaded_libraries.end())
+                // each file once, however spelled ("m.mtl", "./m.mtl", ".//m.mtl"):
+                // a file read again would add all its materials again, so a
+                // short OBJ line could multiply a large MTL file in memory
+                std::error_code ec;
+                const std::filesystem::path canonical = std::filesystem::weakly_canonical(folder / file, ec);
+                const std::string key = ec ? (folder / file).lexically_normal().string() : canonical.string();
+                if (std::find(loaded_libraries.begin(), loaded_libraries.end(), key) != loaded_libraries.end())
                     continue;
-                loaded_libraries.push_back(file);
+                loaded_libraries.push_back(key);
                 read_mtl(folder / file, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
@@ -466,8 +655,11 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 throw parse_error(at, "a material declared in the material library", "'" + printable(wanted, 24) + "'",
                                   list.empty() ? "the library declares none" : "known: " + printable(list, 200));
             }
+        } else {
+            // any other statement (curves, surfaces, ...) is not used by rt nor
+            // read by tinyobjloader, but its numbers must fit a float too
+            line.check_number_words(false);
         }
-        // any other statement (o, g, s, comments, curves ...) is not used by rt
     });
     const std::size_t counts[3] = {out.positions.size(), out.texcoords, out.normals};
     const char* kinds[3] = {"vertex", "texture coordinate", "normal"};

@@ -381,8 +381,10 @@ inline std::vector<token> tokenize(const std::string& text, const source_locatio
 
 /// Reads the next line of `in` into `text`, without its line break, but never
 /// more than `limit` + 1 characters, so that a file without line breaks cannot
-/// exhaust memory (the caller rejects a line longer than `limit`). Returns
-/// false at the end of the input, as std::getline does.
+/// exhaust memory (the caller rejects a line longer than `limit`). A line ends
+/// at LF, CR LF or a lone CR (classic Mac OS files), so line numbers are right
+/// whichever a file uses. Returns false at the end of the input, as
+/// std::getline does.
 inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t limit)
 {
     text.clear();
@@ -390,6 +392,11 @@ inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t l
     while (in.get(c)) {
         if (c == '\n')
             return true;
+        if (c == '\r') {
+            if (in.peek() == '\n')
+                in.get(c);
+            return true;
+        }
         text += c;
         if (text.size() > limit)
             return true;
