@@ -136,31 +136,23 @@ TEST_CASE("a mirror ball reflects the background where its reflections escape")
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(3, 0, 5), rt::vec3(0, 0, -1)}), 0.25, 0.5, 1.0);
 }
 
-TEST_CASE("two facing mirrors: exactly 1 + max_depth rays, plus one shadow ray per bounce when a light sees them")
+TEST_CASE("two facing mirrors: exactly 1 + max_depth closest-hit queries")
 {
     // The same mirrors, seen through rt::counting_accelerator (render_setup.hpp),
-    // which counts every query: the camera ray and D reflections are closest-hit
-    // queries; with a point light between the mirrors each of the D + 1 hits
-    // also sends one shadow ray (the light is in front of both mirrors).
+    // which counts every query: the camera ray and D reflections, D + 1 in all.
+    // No light, so no shadow ray: a lit scene would also run stages 05 and 06,
+    // and this suite grades stage 07 alone.
     for (int D : {0, 1, 5, 20}) {
-        for (bool lit : {false, true}) {
-            rt::scene s;
-            s.max_depth = D;
-            s.materials.push_back(ambient_material(rt::color(0.1f), rt::color(0.9f)));
-            add_square_z(s, 5, 0, 0);
-            add_square_z(s, 5, 2, 0);
-            if (lit) {
-                rt::light bulb;
-                bulb.position = rt::vec3(1, 1, 1);
-                s.lights.push_back(bulb);
-            }
-            const rt::accelerator accel(s);
-            std::uint64_t queries = 0;
-            rt::ray_color(s, rt::counting_accelerator{&accel, &queries},
-                          rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
-            CAPTURE(D);
-            CAPTURE(lit);
-            CHECK(queries == std::uint64_t(D + 1) * (lit ? 2u : 1u));
-        }
+        rt::scene s;
+        s.max_depth = D;
+        s.materials.push_back(ambient_material(rt::color(0.1f), rt::color(0.9f)));
+        add_square_z(s, 5, 0, 0);
+        add_square_z(s, 5, 2, 0);
+        const rt::accelerator accel(s);
+        std::uint64_t queries = 0;
+        rt::ray_color(s, rt::counting_accelerator{&accel, &queries},
+                      rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
+        CAPTURE(D);
+        CHECK(queries == std::uint64_t(D + 1));
     }
 }
