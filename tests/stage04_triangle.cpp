@@ -960,28 +960,153 @@ TEST_CASE("the BVH is the same whatever the number of threads that build it")
 {
     std::mt19937 random(5);
     const rt::scene s = random_scene(random, 2000, 6000, true); // large enough to be split among threads
-    rt::bvh_options one, four;
-    one.threads = 1;
-    four.threads = 4;
-    const rt::accelerator a(s, rt::accelerator_kind::bvh, one), b(s, rt::accelerator_kind::bvh, four);
-    const std::vector<rt::bvh_node>& na = a.tree().nodes();
-    const std::vector<rt::bvh_node>& nb = b.tree().nodes();
-    REQUIRE(na.size() == nb.size());
-    bool same = true;
-    for (std::size_t i = 0; i < na.size(); ++i)
-        for (int c = 0; c < 4; ++c) {
-            same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
-            for (int row = 0; row < 6; ++row)
-                same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
+    for (const bool spatial : {false, true}) {
+        CAPTURE(spatial);
+        rt::bvh_options one, four;
+        one.threads = 1;
+        four.threads = 4;
+        if (spatial) { // forced everywhere, so that the threads share the top of the tree
+            one.spatial_budget = four.spatial_budget = 1;
+            one.spatial_overlap = four.spatial_overlap = 0;
+        } else {
+            one.spatial_budget = four.spatial_budget = 0;
         }
-    const std::vector<rt::packed_primitive>& pa = a.tree().primitives();
-    const std::vector<rt::packed_primitive>& pb = b.tree().primitives();
-    REQUIRE(pa.size() == pb.size());
-    for (std::size_t i = 0; i < pa.size(); ++i)
-        same = same && pa[i].id == pb[i].id;
-    CHECK(same);
-    CHECK(a.stats().nodes == b.stats().nodes);
-    CHECK(a.stats().depth == b.stats().depth);
+        const rt::accelerator a(s, rt::accelerator_kind::bvh, one), b(s, rt::accelerator_kind::bvh, four);
+        CHECK((a.stats().spatial_splits > 0) == spatial);
+        const std::vector<rt::bvh_node>& na = a.tree().nodes();
+        const std::vector<rt::bvh_node>& nb = b.tree().nodes();
+        REQUIRE(na.size() == nb.size());
+        bool same = true;
+        for (std::size_t i = 0; i < na.size(); ++i)
+            for (int c = 0; c < 4; ++c) {
+                same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
+                for (int row = 0; row < 6; ++row)
+                    same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
+            }
+        const std::vector<rt::packed_primitive>& pa = a.tree().primitives();
+        const std::vector<rt::packed_primitive>& pb = b.tree().primitives();
+        REQUIRE(pa.size() == pb.size());
+        for (std::size_t i = 0; i < pa.size(); ++i)
+            same = same && pa[i].id == pb[i].id;
+        CHECK(same);
+        CHECK(a.stats().nodes == b.stats().nodes);
+        CHECK(a.stats().depth == b.stats().depth);
+        CHECK(a.stats().references == b.stats().references);
+    }
+}
+
+TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box never cuts it")
+{
+    // Random triangles, random planes through them, points of the triangle
+    // (corners, points on the edges, inside) computed in double: each point
+    // on a side of the plane lies in that side's box, also when the box is
+    // cut to a smaller one that holds the point (the piece a node already has).
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> coordinate(-1000, 1000), unit(0, 1);
+    std::size_t points = 0, outside = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double scale = std::pow(10.0, double(k % 7) - 3); // 1e-3 ... 1e3
+        vec3 corner[3];
+        for (vec3& c : corner)
+            c = vec3(real(scale * coordinate(random)), real(scale * coordinate(random)), real(scale * coordinate(random)));
+        const rt::packed_primitive p = rt::pack_triangle(corner[0], corner[1], corner[2], 0);
+        const rt::aabb box = rt::packed_bounds(p);
+        const int axis = k % 3;
+        const real s = box.lo[axis] + real(unit(random)) * (box.hi[axis] - box.lo[axis]);
+        const rt::aabb below = rt::detail::clipped_box(p, axis, s, true, box);
+        const rt::aabb above = rt::detail::clipped_box(p, axis, s, false, box);
+        for (int j = 0; j < 64; ++j) {
+            double b1 = unit(random), b2 = unit(random);
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
+            if (j % 4 == 1) // on an edge
+                b2 = 0;
+            if (j % 4 == 2)
+                b2 = 1 - b1;
+            if (j == 3) // a corner
+                b1 = b2 = 0;
+            double q[3];
+            for (int i = 0; i < 3; ++i)
+                q[i] = (1 - b1 - b2) * double(corner[0][i]) + b1 * double(corner[1][i]) + b2 * double(corner[2][i]);
+            for (const bool side_below : {true, false}) {
+                if (side_below ? q[axis] > double(s) : q[axis] < double(s))
+                    continue;
+                const rt::aabb& piece = side_below ? below : above;
+                ++points;
+                bool in = true;
+                for (int i = 0; i < 3; ++i)
+                    in = in && double(piece.lo[i]) <= q[i] && q[i] <= double(piece.hi[i]);
+                outside += in ? 0 : 1;
+            }
+        }
+    }
+    MESSAGE(points << " points of 2000 cut triangles, " << outside << " outside their piece's box");
+    CHECK(points > 100000);
+    CHECK(outside == 0);
+}
+
+TEST_CASE("a BVH with spatial splits: every ray through a closed mesh's edges and vertices hits, and hits as the list")
+{
+    // An icosphere stretched 40 times along a diagonal: long thin slanted
+    // triangles whose boxes overlap, the case spatial splits are for. Forced
+    // on everywhere (no overlap threshold, one extra reference per triangle).
+    rt::mesh m = icosphere(3, vec3(0), 1);
+    const vec3 d = glm::normalize(vec3(1, 1, real(0.5)));
+    for (vec3& v : m.positions)
+        v += real(39) * glm::dot(v, d) * d;
+    const rt::scene s = scene_of(m);
+    rt::bvh_options cut;
+    cut.spatial_budget = 1;
+    cut.spatial_overlap = 0;
+    rt::bvh_options plain;
+    plain.spatial_budget = 0;
+    const rt::accelerator tree(s, rt::accelerator_kind::bvh, cut);
+    const rt::accelerator uncut(s, rt::accelerator_kind::bvh, plain);
+    MESSAGE(m.triangles.size() << " triangles, " << tree.stats().references << " references after "
+                               << tree.stats().spatial_splits << " spatial splits; SAH cost "
+                               << tree.stats().sah_cost << " (without: " << uncut.stats().sah_cost << ")");
+    REQUIRE(tree.stats().spatial_splits > 0);
+    REQUIRE(tree.stats().references > m.triangles.size());
+    CHECK(uncut.stats().spatial_splits == 0);
+    CHECK(uncut.stats().references == m.triangles.size());
+    CHECK(tree.stats().sah_cost < uncut.stats().sah_cost); // what the splits were taken for
+
+    const std::vector<surface_target> targets = vertex_and_edge_targets(m);
+    std::size_t rays = 0, misses = 0, wrong_t = 0;
+    for (const vec3& origin : {vec3(0), real(13) * d + vec3(real(0.2), real(-0.1), 0), real(-31) * d + vec3(0, real(0.1), real(-0.05))}) {
+        for (const surface_target& target : targets) {
+            const rt::ray ray{origin, target.point - origin};
+            ++rays;
+            rt::hit_record rec;
+            if (!tree.closest_hit(ray, 0, rt::infinity, rec))
+                ++misses;
+            else if (!near(rec.t, 1, real(1e-4)))
+                ++wrong_t;
+            misses += tree.any_hit(ray, 0, rt::infinity) ? 0 : 1;
+        }
+    }
+    MESSAGE(rays << " rays through edges and vertices from inside: " << misses << " misses");
+    CHECK(misses == 0);
+    CHECK(wrong_t == 0);
+
+    // random rays: the same hit as the list, bit for bit
+    std::mt19937 random(23);
+    std::size_t hits = 0, disagreements = 0;
+    for (const rt::ray& r : random_rays(random, 3000)) {
+        rt::hit_record a, b;
+        const bool in_list = rt::closest_hit_list(s, r, 0, rt::infinity, a);
+        const bool in_tree = tree.closest_hit(r, 0, rt::infinity, b);
+        disagreements += in_list == in_tree && (!in_list || same_hit(a, b)) &&
+                                 rt::any_hit_list(s, r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity)
+                             ? 0
+                             : 1;
+        hits += in_list ? 1 : 0;
+    }
+    MESSAGE("3000 random rays: " << hits << " hits, " << disagreements << " disagreements with the list");
+    CHECK(hits > 100);
+    CHECK(disagreements == 0);
 }
 
 TEST_CASE("an accelerator of an empty scene or of one shape, and auto picks the flat list for tiny scenes")

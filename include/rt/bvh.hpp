@@ -22,6 +22,23 @@
 // reaches max_depth. The binary tree is then collapsed into 4-wide nodes (see
 // wide_collapser).
 //
+// Spatial splits (Stich, Friedrich, Dietrich, "Spatial Splits in Bounding
+// Volume Hierarchies", HPG 2009): a large slanted triangle (a floor, a wall, a
+// column of an architectural model) has a box far larger than itself, which
+// overlaps its neighbours' boxes, so no plane between centroids separates
+// them, and every ray through the box pays for it. At the top of the tree
+// (binary_builder::build_spatial), a node whose best split above leaves two
+// children overlapping by more than bvh_options::spatial_overlap of the
+// root's area also tries planes that cut primitives: a primitive straddling
+// the plane goes to both children, each with the box of its part only
+// (detail::clipped_box, rounded outwards so it never cuts the triangle). The
+// split is taken when its SAH cost is lower, within a budget of extra
+// references (bvh_options::spatial_budget). A piece is the same triangle, so a
+// ray gets the same hit through either; a leaf keeps one piece of each.
+// On Sponza's incoherent rays this made traversal about 1.5x faster
+// (docs/performance.md, experiment 6); on meshes of small triangles nothing
+// is cut and the build is as before.
+//
 // Layout, and why:
 //  - A node holds the boxes of up to four children, not its own box (as the
 //    4-wide BVHs cited at wide_collapser do; Aila and Laine, "Understanding the
@@ -51,8 +68,9 @@
 //    blocks need no mask: an unused lane holds NaN corners, whose t the range
 //    test refuses.
 //  - The packed primitives (packed_primitive, 40 bytes) are kept too, in leaf
-//    order (bvh::primitives(), for the tests); traversal reads only the
-//    nodes and the blocks, and a hit's corners are read from its block.
+//    order (bvh::primitives(), for the tests; a primitive cut by spatial
+//    splits is there once per piece); traversal reads only the nodes and the
+//    blocks, and a hit's corners are read from its block.
 //  - Per ray, traversal precomputes the reciprocal direction and, per axis,
 //    which plane row of a node is met first (the sign of the reciprocal), so a
 //    box test is a subtraction and a multiplication per plane, no division and
@@ -364,11 +382,21 @@ struct bvh_options {
     std::size_t primitives_per_test = 4; ///< the SAH counts a leaf's primitives in blocks of this many
     int max_depth = 60;               ///< a node this deep in the binary tree becomes a leaf
     int threads = 0;                  ///< threads for the build; 0: one per core (the tree is the same)
+    /// Spatial splits (see binary_builder::build_spatial): at most this many
+    /// extra references, as a fraction of the primitives; 0 turns them off.
+    real spatial_budget = real(0.3);
+    /// A node tries spatial splits when its best object split's children
+    /// overlap by more than this fraction of the root's surface area. Stich
+    /// et al. use 1e-5; 3e-3 keeps Sponza's gain at about half the extra
+    /// build time (docs/performance.md, experiment 6).
+    real spatial_overlap = real(3e-3);
 };
 
 /// What a build produced.
 struct bvh_stats {
     std::size_t primitives = 0;
+    std::size_t references = 0;   ///< primitives plus the extra pieces made by spatial splits
+    std::size_t spatial_splits = 0; ///< binary nodes split by a plane that cuts primitives
     std::size_t nodes = 0;        ///< 4-wide nodes
     std::size_t leaves = 0;
     std::size_t binary_nodes = 0; ///< inner nodes of the binary tree before collapsing
@@ -406,6 +434,63 @@ inline real half_area(const aabb& box)
     return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
+
+/// Rounds a double to the nearest real below it (down) or above it.
+inline real round_outwards(double x, bool down)
+{
+    real r = real(x);
+    if (down && double(r) > x)
+        r = std::nextafter(r, -std::numeric_limits<real>::infinity());
+    if (!down && double(r) < x)
+        r = std::nextafter(r, std::numeric_limits<real>::infinity());
+    return r;
+}
+
+/// The box of the part of primitive p inside `within` and on one side of the
+/// plane x[axis] = s (below: x[axis] <= s, else x[axis] >= s); empty when
+/// there is no such part. It never cuts the primitive: a triangle's corners
+/// on that side and the points where its edges cross the plane (computed in
+/// double, widened by more than their rounding error and rounded outwards),
+/// then cut to `within`; a sphere's is `within` cut at the plane.
+inline aabb clipped_box(const packed_primitive& p, int axis, real s, bool below, const aabb& within)
+{
+    aabb box;
+    if (p.id & sphere_flag) {
+        box = within;
+    } else {
+        for (int i = 0; i < 3; ++i) {
+            const real* u = p.v + 3 * i;
+            const real* v = p.v + 3 * ((i + 1) % 3);
+            if (below ? u[axis] <= s : u[axis] >= s)
+                box.grow(vec3(u[0], u[1], u[2]));
+            if ((u[axis] < s && v[axis] > s) || (u[axis] > s && v[axis] < s)) {
+                const double t = (double(s) - double(u[axis])) / (double(v[axis]) - double(u[axis]));
+                vec3 lo, hi;
+                for (int k = 0; k < 3; ++k) {
+                    if (k == axis) {
+                        lo[k] = hi[k] = s;
+                        continue;
+                    }
+                    const double x = double(u[k]) + t * (double(v[k]) - double(u[k]));
+                    const double margin = 16 * std::numeric_limits<double>::epsilon() *
+                                          (std::abs(double(u[k])) + std::abs(double(v[k])));
+                    lo[k] = round_outwards(x - margin, true);
+                    hi[k] = round_outwards(x + margin, false);
+                }
+                box.grow(lo);
+                box.grow(hi);
+            }
+        }
+        box.lo = glm::max(box.lo, within.lo);
+        box.hi = glm::min(box.hi, within.hi);
+    }
+    if (below)
+        box.hi[axis] = std::min(box.hi[axis], s);
+    else
+        box.lo[axis] = std::max(box.lo[axis], s);
+    return box;
+}
+
 /// A child of a binary node: inner (count 0, `index` a binary node) or a leaf
 /// (`count` primitives from `index`).
 struct binary_child {
@@ -427,8 +512,17 @@ struct binary_node {
 /// whatever the number of threads.
 class binary_builder {
 public:
-    binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads)
-        : items_(items), options_(options), spare_threads_(spare_threads),
+    /// A split of a node by the SAH: the axis, where, its cost and the children's boxes.
+    struct split {
+        int axis = -1;
+        std::size_t bin = 0;  ///< the first bin of the right side
+        real cost = 0;        ///< A_L N_L + A_R N_R
+        aabb left, right;
+    };
+
+    binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,
+                   const packed_primitive* prims = nullptr)
+        : items_(items), options_(options), spare_threads_(spare_threads), prims_(prims),
           bin_count_(std::size_t(std::max(2, std::min(options.bins, 256))))
     {
         for (int axis = 0; axis < 3; ++axis)
@@ -439,9 +533,158 @@ public:
 
     std::vector<binary_node> nodes;
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
+    std::size_t spatial_splits = 0;
 
-    /// Builds the subtree of items [begin, end) inside `box`; returns it as a child.
-    binary_child build(std::size_t begin, std::size_t end, const aabb& box, int depth)
+    /// The top of the tree with spatial splits (Stich, Friedrich, Dietrich,
+    /// "Spatial Splits in Bounding Volume Hierarchies", HPG 2009). `refs` are
+    /// this node's references (moved in, freed before the children are
+    /// built). A node whose best object split leaves two children that
+    /// overlap by more than spatial_overlap of the root's area also bins its
+    /// references between planes that may cut them (find_spatial_split); if
+    /// that costs less by the SAH, a reference that straddles the plane goes
+    /// to both children, each with the box of its part (clipped_box). The
+    /// pieces are references to the same primitive, so a ray gets the same
+    /// hit whichever it meets. A node where the overlap is small, or whose
+    /// subtree is small, is handed to build(), in place at the end of items_.
+    binary_child build_spatial(std::vector<build_item> refs, const aabb& box, int depth, real root_area,
+                               std::size_t& budget)
+    {
+        const std::size_t n = refs.size();
+        const auto hand_over = [&](const split* known = nullptr, const aabb* centroids = nullptr) {
+            const std::size_t begin = items_.size();
+            items_.insert(items_.end(), refs.begin(), refs.end());
+            std::vector<build_item>().swap(refs);
+            return build(begin, items_.size(), box, depth, known, centroids);
+        };
+        if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
+            return hand_over();
+        // a node where every reference is narrower than a slice on every
+        // axis gains nothing from cutting them (a fine mesh, or the lower
+        // part of the tree): build() does it in place and on threads
+        aabb centroids;
+        bool wide[3] = {false, false, false};
+        const vec3 slice_width = box.extent() / real(bin_count_);
+        for (const build_item& r : refs) {
+            centroids.grow(r.centroid);
+            const vec3 e = r.box.extent();
+            for (int axis = 0; axis < 3; ++axis)
+                wide[axis] = wide[axis] || e[axis] > slice_width[axis];
+        }
+        if (!wide[0] && !wide[1] && !wide[2])
+            return hand_over();
+        const split object = find_split(refs.data(), n, centroids);
+        if (object.axis < 0)
+            return hand_over(&object, &centroids);
+        aabb overlap;
+        overlap.lo = glm::max(object.left.lo, object.right.lo);
+        overlap.hi = glm::min(object.left.hi, object.right.hi);
+        if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
+            return hand_over(&object, &centroids);
+        const spatial_split cut = find_spatial_split(refs, box, wide);
+
+        std::vector<build_item> left, right;
+        if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
+            for (const build_item& r : refs) {
+                if (r.box.hi[cut.axis] <= cut.plane) {
+                    left.push_back(r);
+                } else if (r.box.lo[cut.axis] >= cut.plane) {
+                    right.push_back(r);
+                } else {
+                    const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
+                    const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
+                    if (below.empty()) {
+                        right.push_back(r);
+                    } else if (above.empty()) {
+                        left.push_back(r);
+                    } else {
+                        left.push_back(build_item{below, below.center(), r.index});
+                        right.push_back(build_item{above, above.center(), r.index});
+                    }
+                }
+            }
+            if (left.empty() || right.empty()) {
+                std::vector<build_item>().swap(left);
+                std::vector<build_item>().swap(right);
+            } else {
+                budget -= std::min(budget, left.size() + right.size() - n);
+                ++spatial_splits;
+            }
+        }
+        if (left.empty() && right.empty()) { // the object split, as build() makes it
+            const real low = centroids.lo[object.axis];
+            const real scale = real(bin_count_) / (centroids.hi[object.axis] - low);
+            for (const build_item& r : refs)
+                (bin_of(r.centroid[object.axis], low, scale) < object.bin ? left : right).push_back(r);
+        }
+        std::vector<build_item>().swap(refs);
+        aabb left_box, right_box;
+        for (const build_item& r : left)
+            left_box.grow(r.box);
+        for (const build_item& r : right)
+            right_box.grow(r.box);
+
+        // the budget left is shared by the children in proportion to their
+        // references, so the tree does not depend on which is built first
+        std::size_t right_budget =
+            std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
+        std::size_t left_budget = budget - right_budget;
+        budget = 0;
+        const std::size_t index = nodes.size();
+        nodes.emplace_back();
+        sah_cost += double(options_.traversal_cost) * double(half_area(box));
+        binary_child l, r;
+        if (spare_threads_ > 0 && n >= parallel_threshold) {
+            // the right child on a thread of its own, into arrays of its own,
+            // joined after the left child's as build() does
+            const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
+            spare_threads_ -= for_right + 1;
+            std::vector<build_item> right_items;
+            binary_builder right_builder(right_items, options_, for_right, prims_);
+            std::exception_ptr failure;
+            std::thread worker([&] {
+                try {
+                    r = right_builder.build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+                } catch (...) {
+                    failure = std::current_exception();
+                }
+            });
+            try {
+                l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
+            } catch (...) {
+                worker.join();
+                throw;
+            }
+            worker.join();
+            if (failure)
+                std::rethrow_exception(failure);
+            const std::uint32_t node_offset = std::uint32_t(nodes.size());
+            const std::uint32_t item_offset = std::uint32_t(items_.size());
+            const auto moved = [&](binary_child& c) { c.index += c.count == 0 ? node_offset : item_offset; };
+            for (binary_node& node : right_builder.nodes)
+                for (binary_child& side : node.side)
+                    moved(side);
+            moved(r);
+            nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
+            items_.insert(items_.end(), right_items.begin(), right_items.end());
+            sah_cost += right_builder.sah_cost;
+            spatial_splits += right_builder.spatial_splits;
+        } else {
+            l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
+            r = build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+        }
+        nodes[index].side[0] = l;
+        nodes[index].side[1] = r;
+        binary_child inner;
+        inner.box = box;
+        inner.index = std::uint32_t(index);
+        return inner;
+    }
+
+    /// Builds the subtree of items [begin, end) inside `box`; returns it as a
+    /// child. `known` and `known_centroids`, when given, are this node's best
+    /// split and centroid box, already found by build_spatial.
+    binary_child build(std::size_t begin, std::size_t end, const aabb& box, int depth, const split* known = nullptr,
+                       const aabb* known_centroids = nullptr)
     {
         const std::size_t n = end - begin;
         const real area = half_area(box);
@@ -449,12 +692,15 @@ public:
             return leaf(begin, n, box, area);
 
         aabb centroids;
-        for (std::size_t i = begin; i < end; ++i)
-            centroids.grow(items_[i].centroid);
+        if (known_centroids != nullptr)
+            centroids = *known_centroids;
+        else
+            for (std::size_t i = begin; i < end; ++i)
+                centroids.grow(items_[i].centroid);
 
         aabb left_box, right_box;
         std::size_t middle = begin;
-        const split best = find_split(begin, end, centroids);
+        const split best = known != nullptr ? *known : find_split(items_.data() + begin, n, centroids);
         if (best.axis < 0) {
             // every centroid is the same point: no plane separates them
             if (n <= options_.max_leaf_size)
@@ -538,12 +784,6 @@ private:
         std::size_t count = 0;
     };
 
-    struct split {
-        int axis = -1;
-        std::size_t bin = 0;  ///< the first bin of the right side
-        real cost = 0;        ///< A_L N_L + A_R N_R
-        aabb left, right;
-    };
 
     /// The leaf tests that n primitives cost: ceil(n / primitives_per_test)
     /// (the SIMD leaf test handles a block of four triangles at the price of
@@ -560,7 +800,7 @@ private:
         return std::min(bin_count_ - 1, std::size_t(slot > 0 ? slot : real(0)));
     }
 
-    split find_split(std::size_t begin, std::size_t end, const aabb& centroids)
+    split find_split(const build_item* items, std::size_t n, const aabb& centroids)
     {
         real low[3], scale[3];
         for (int axis = 0; axis < 3; ++axis) {
@@ -570,8 +810,8 @@ private:
             for (bin& b : bins_[axis])
                 b = bin{};
         }
-        for (std::size_t i = begin; i < end; ++i) { // one pass, three axes
-            const build_item& item = items_[i];
+        for (std::size_t i = 0; i < n; ++i) { // one pass, three axes
+            const build_item& item = items[i];
             for (int axis = 0; axis < 3; ++axis) {
                 bin& b = bins_[axis][bin_of(item.centroid[axis], low[axis], scale[axis])];
                 b.box.grow(item.box);
@@ -597,7 +837,7 @@ private:
             for (std::size_t s = 1; s < bin_count_; ++s) {
                 left.grow(bins[s - 1].box);
                 on_left += bins[s - 1].count;
-                if (on_left == 0 || on_left == end - begin)
+                if (on_left == 0 || on_left == n)
                     continue;
                 const real cost = half_area(left) * tests(on_left) + right_cost_[s];
                 if (best.axis < 0 || cost < best.cost) {
@@ -612,8 +852,116 @@ private:
         return best;
     }
 
+    struct spatial_split {
+        int axis = -1;
+        real plane = 0;
+        real cost = 0;          ///< A_L N_L + A_R N_R, as split::cost
+        std::size_t extra = 0;  ///< references that would go to both sides
+    };
+
+    /// The best plane between `bins` equal slices of the node's box, on any
+    /// axis, with each reference's parts binned where they lie ("chopped
+    /// binning", Stich et al. sec. 4): a reference spanning several slices
+    /// adds the box of its part in each slice (clipped_box) and counts as
+    /// entering its first slice and leaving its last.
+    /// Axes where no reference is wider than a slice (wide[axis] false) are
+    /// skipped: there a plane cuts next to nothing, and an object split
+    /// does as well.
+    spatial_split find_spatial_split(const std::vector<build_item>& refs, const aabb& box, const bool wide[3])
+    {
+        spatial_split best;
+        const std::size_t count = bin_count_;
+        std::vector<aabb> slice(count), right_box(count);
+        std::vector<std::size_t> enter(count), leave(count), right_count(count);
+        for (int axis = 0; axis < 3; ++axis) {
+            const real low = box.lo[axis], extent = box.hi[axis] - box.lo[axis];
+            if (!wide[axis] || !(extent > 0))
+                continue;
+            const real scale = real(count) / extent;
+            const auto plane = [&](std::size_t b) { return low + extent * real(b) / real(count); };
+            const auto slot = [&](real x) {
+                const real at = (x - low) * scale;
+                return std::min(count - 1, std::size_t(at > 0 ? at : real(0)));
+            };
+            std::fill(slice.begin(), slice.end(), aabb{});
+            std::fill(enter.begin(), enter.end(), 0);
+            std::fill(leave.begin(), leave.end(), 0);
+            for (const build_item& r : refs) {
+                const std::size_t first = slot(r.box.lo[axis]), last = slot(r.box.hi[axis]);
+                ++enter[first];
+                ++leave[last];
+                if (first == last) {
+                    slice[first].grow(r.box);
+                    continue;
+                }
+                const packed_primitive& p = prims_[r.index];
+                if (p.id & sphere_flag) { // the slab of the box
+                    for (std::size_t b = first; b <= last; ++b) {
+                        aabb part = r.box;
+                        part.lo[axis] = std::max(part.lo[axis], plane(b));
+                        part.hi[axis] = std::min(part.hi[axis], plane(b + 1));
+                        slice[b].grow(part);
+                    }
+                    continue;
+                }
+                // An estimate, for the cost only (the partition uses
+                // clipped_box): each corner goes to its slice and each point
+                // where an edge crosses a plane to the slices on both sides,
+                // all held inside the reference's box.
+                const auto held = [&](const vec3& q) { return glm::clamp(q, r.box.lo, r.box.hi); };
+                for (int i = 0; i < 3; ++i) {
+                    const vec3 u(p.v[3 * i], p.v[3 * i + 1], p.v[3 * i + 2]);
+                    slice[std::max(first, std::min(last, slot(u[axis])))].grow(held(u));
+                    const int j = (i + 1) % 3;
+                    vec3 a = u, b(p.v[3 * j], p.v[3 * j + 1], p.v[3 * j + 2]);
+                    if (a[axis] > b[axis])
+                        std::swap(a, b);
+                    const std::size_t from = std::max(first, slot(a[axis])), to = std::min(last, slot(b[axis]));
+                    for (std::size_t k = from + 1; k <= to; ++k) {
+                        const real s = plane(k);
+                        const vec3 q = held(a + (b - a) * ((s - a[axis]) / (b[axis] - a[axis])));
+                        slice[k - 1].grow(q);
+                        slice[k].grow(q);
+                    }
+                }
+            }
+            aabb accumulated;
+            std::size_t on_right = 0;
+            for (std::size_t b = count - 1; b > 0; --b) {
+                accumulated.grow(slice[b]);
+                on_right += leave[b];
+                right_box[b] = accumulated;
+                right_count[b] = on_right;
+            }
+            aabb left;
+            std::size_t on_left = 0;
+            for (std::size_t b = 1; b < count; ++b) {
+                left.grow(slice[b - 1]);
+                on_left += enter[b - 1];
+                if (on_left == 0 || right_count[b] == 0)
+                    continue;
+                const real cost = half_area(left) * tests(on_left) + half_area(right_box[b]) * tests(right_count[b]);
+                if (best.axis < 0 || cost < best.cost) {
+                    best.axis = axis;
+                    best.plane = plane(b);
+                    best.cost = cost;
+                    best.extra = on_left + right_count[b] - refs.size();
+                }
+            }
+        }
+        return best;
+    }
+
     binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)
     {
+        // two pieces of one primitive (spatial splits) in one leaf: keep one;
+        // the rest of the range stays in items_, referenced by no leaf
+        const auto first = items_.begin() + std::ptrdiff_t(begin);
+        std::sort(first, first + std::ptrdiff_t(n),
+                  [](const build_item& x, const build_item& y) { return x.index < y.index; });
+        n = std::size_t(std::unique(first, first + std::ptrdiff_t(n),
+                                    [](const build_item& x, const build_item& y) { return x.index == y.index; }) -
+                        first);
         sah_cost += double(options_.intersection_cost) * double(area) * double(tests(n));
         binary_child c;
         c.box = box;
@@ -625,6 +973,7 @@ private:
     std::vector<build_item>& items_;
     const bvh_options& options_;
     int spare_threads_;
+    const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
     std::vector<bin> bins_[3];
     std::vector<real> right_cost_;
@@ -1083,9 +1432,20 @@ public:
             scene_box.grow(items[i].box);
         }
         const int threads = used.threads > 0 ? used.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-        detail::binary_builder builder(items, used, threads - 1);
+        detail::binary_builder builder(items, used, threads - 1, prims_.data());
         builder.nodes.reserve(prims_.size());
-        const detail::binary_child root = builder.build(0, items.size(), scene_box, 0);
+        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(prims_.size()));
+        detail::binary_child root;
+        if (budget > 0) {
+            std::vector<detail::build_item> refs;
+            refs.swap(items);
+            items.reserve(refs.size() + budget);
+            root = builder.build_spatial(std::move(refs), scene_box, 0, detail::half_area(scene_box), budget);
+        } else {
+            root = builder.build(0, items.size(), scene_box, 0);
+        }
+        stats_.references = items.size();
+        stats_.spatial_splits = builder.spatial_splits;
         const std::vector<detail::binary_node>& binary = builder.nodes;
         const real root_area = detail::half_area(scene_box);
         stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;
@@ -1095,7 +1455,7 @@ public:
         detail::wide_collapser(binary, nodes_, stats_).collapse(root, 0);
         stats_.nodes = nodes_.size();
 
-        std::vector<packed_primitive> ordered(prims_.size());
+        std::vector<packed_primitive> ordered(items.size());
         for (std::size_t i = 0; i < items.size(); ++i) {
             ordered[i] = prims_[items[i].index];
             has_spheres_ = has_spheres_ || (ordered[i].id & sphere_flag) != 0;
@@ -1146,6 +1506,8 @@ public:
     }
 
     const std::vector<bvh_node>& nodes() const { return nodes_; }
+    /// The references in build order (bvh_stats::references of them): each
+    /// primitive, once per piece where spatial splits cut it.
     const std::vector<packed_primitive>& primitives() const { return prims_; }
     /// The leaves' primitives as blocks of four (a leaf's reference in
     /// bvh_node::child is leaf_flag | its first block).
