@@ -571,7 +571,7 @@ public:
                 wide[axis] = wide[axis] || e[axis] > slice_width[axis];
         }
         if (!wide[0] && !wide[1] && !wide[2])
-            return hand_over();
+            return hand_over(nullptr, &centroids);
         const split object = find_split(refs.data(), n, centroids);
         if (object.axis < 0)
             return hand_over(&object, &centroids);
@@ -634,40 +634,14 @@ public:
         sah_cost += double(options_.traversal_cost) * double(half_area(box));
         binary_child l, r;
         if (spare_threads_ > 0 && n >= parallel_threshold) {
-            // the right child on a thread of its own, into arrays of its own,
-            // joined after the left child's as build() does
-            const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
-            spare_threads_ -= for_right + 1;
+            // the right child into an item array of its own: it appends to it
             std::vector<build_item> right_items;
-            binary_builder right_builder(right_items, options_, for_right, prims_);
-            std::exception_ptr failure;
-            std::thread worker([&] {
-                try {
-                    r = right_builder.build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
-                } catch (...) {
-                    failure = std::current_exception();
-                }
-            });
-            try {
-                l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
-            } catch (...) {
-                worker.join();
-                throw;
-            }
-            worker.join();
-            if (failure)
-                std::rethrow_exception(failure);
-            const std::uint32_t node_offset = std::uint32_t(nodes.size());
-            const std::uint32_t item_offset = std::uint32_t(items_.size());
-            const auto moved = [&](binary_child& c) { c.index += c.count == 0 ? node_offset : item_offset; };
-            for (binary_node& node : right_builder.nodes)
-                for (binary_child& side : node.side)
-                    moved(side);
-            moved(r);
-            nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
-            items_.insert(items_.end(), right_items.begin(), right_items.end());
-            sah_cost += right_builder.sah_cost;
-            spatial_splits += right_builder.spatial_splits;
+            build_in_parallel(
+                right_items, l, r,
+                [&] { return build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget); },
+                [&](binary_builder& b) {
+                    return b.build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+                });
         } else {
             l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
             r = build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
@@ -732,37 +706,10 @@ public:
         sah_cost += double(options_.traversal_cost) * double(area);
         binary_child left, right;
         if (spare_threads_ > 0 && n >= parallel_threshold) {
-            // the right half on a thread of its own, with half of the spare threads
-            const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
-            spare_threads_ -= for_right + 1;
-            binary_builder right_builder(items_, options_, for_right);
-            std::exception_ptr failure;
-            std::thread worker([&] {
-                try {
-                    right = right_builder.build(middle, end, right_box, depth + 1);
-                } catch (...) {
-                    failure = std::current_exception();
-                }
-            });
-            try {
-                left = build(begin, middle, left_box, depth + 1);
-            } catch (...) {
-                worker.join();
-                throw;
-            }
-            worker.join();
-            if (failure)
-                std::rethrow_exception(failure);
-            // join the arrays: the right subtree's nodes follow the left subtree's
-            const std::uint32_t offset = std::uint32_t(nodes.size());
-            for (binary_node& node : right_builder.nodes)
-                for (binary_child& side : node.side)
-                    if (side.count == 0)
-                        side.index += offset;
-            if (right.count == 0)
-                right.index += offset;
-            nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
-            sah_cost += right_builder.sah_cost;
+            // the right half sorts its own range of items_ in place
+            build_in_parallel(
+                items_, left, right, [&] { return build(begin, middle, left_box, depth + 1); },
+                [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1); });
         } else {
             left = build(begin, middle, left_box, depth + 1);
             right = build(middle, end, right_box, depth + 1);
@@ -776,6 +723,51 @@ public:
     }
 
 private:
+    /// Builds a node's left child here (build_left()) and its right child on a
+    /// thread of its own with half of the spare threads (build_right(b), b a
+    /// builder over `right_items`: items_ itself, or an array of its own), then
+    /// joins the arrays as a single thread writes them: the right subtree's
+    /// nodes after the left subtree's, and its items after ours when it had
+    /// an array of its own. So the tree does not depend on the thread count.
+    template <class Left, class Right>
+    void build_in_parallel(std::vector<build_item>& right_items, binary_child& left, binary_child& right,
+                           const Left& build_left, const Right& build_right)
+    {
+        const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
+        spare_threads_ -= for_right + 1;
+        binary_builder right_builder(right_items, options_, for_right, prims_);
+        std::exception_ptr failure;
+        std::thread worker([&] {
+            try {
+                right = build_right(right_builder);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+        });
+        try {
+            left = build_left();
+        } catch (...) {
+            worker.join();
+            throw;
+        }
+        worker.join();
+        if (failure)
+            std::rethrow_exception(failure);
+        const bool own_items = &right_items != &items_;
+        const std::uint32_t node_offset = std::uint32_t(nodes.size());
+        const std::uint32_t item_offset = own_items ? std::uint32_t(items_.size()) : 0;
+        const auto moved = [&](binary_child& c) { c.index += c.count == 0 ? node_offset : item_offset; };
+        for (binary_node& node : right_builder.nodes)
+            for (binary_child& side : node.side)
+                moved(side);
+        moved(right);
+        nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
+        if (own_items)
+            items_.insert(items_.end(), right_items.begin(), right_items.end());
+        sah_cost += right_builder.sah_cost;
+        spatial_splits += right_builder.spatial_splits;
+    }
+
     /// Below this many primitives a subtree is not worth a thread.
     static constexpr std::size_t parallel_threshold = 4096;
 
