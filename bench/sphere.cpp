@@ -20,6 +20,7 @@
 
 #include <rt/random.hpp>
 #include <rt/sphere.hpp>
+#include <rt/sphere_stable.hpp>
 
 #include "bench.hpp"
 

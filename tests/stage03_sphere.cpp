@@ -31,6 +31,7 @@
 #include <rt/hit_record.hpp>
 #include <rt/ray.hpp>
 #include <rt/sphere.hpp>
+#include <rt/sphere_stable.hpp>
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <rt/hit_record.hpp>
 #include <rt/scene.hpp>
 #include <rt/shading.hpp>
-#include <rt/sphere.hpp>
+#include <rt/sphere_stable.hpp>
 
 namespace {
 

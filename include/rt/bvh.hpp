@@ -161,7 +161,7 @@
 #include "hit_record.hpp"
 #include "ray.hpp"
 #include "rounding.hpp"
-#include "sphere.hpp"
+#include "sphere_stable.hpp"
 #include "triangle.hpp"
 #include "vec.hpp"
 

@@ -42,7 +42,7 @@
 #include "ray.hpp"
 #include "rounding.hpp"
 #include "scene.hpp"
-#include "sphere.hpp"
+#include "sphere_stable.hpp"
 #include "triangle.hpp"
 #include "vec.hpp"
 

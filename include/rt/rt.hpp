@@ -33,6 +33,7 @@
 #include "shadows.hpp"
 #include "spawn.hpp"
 #include "sphere.hpp"
+#include "sphere_stable.hpp"
 #include "tonemap.hpp"
 #include "transfer.hpp"
 #include "triangle.hpp"

@@ -16,7 +16,7 @@
 #include "light.hpp"
 #include "material.hpp"
 #include "mesh.hpp"
-#include "sphere.hpp"
+#include "sphere_shape.hpp"
 #include "triangle.hpp"
 #include "vec.hpp"
 

@@ -1,4 +1,4 @@
-// sphere.hpp - a sphere |x - c| = R and two ways to intersect a ray with it (stage 03).
+// sphere.hpp - a sphere |x - c| = R and the textbook ray-sphere intersection (stage 03).
 //
 // Substituting the ray r(t) = p + t d into |x - c|^2 = R^2 gives a quadratic in
 // t whose roots are (Fundamentals of Computer Graphics, 4th ed., sec. 4.4.1,
@@ -10,38 +10,19 @@
 // rounding error. At distance 1e4 a unit sphere's discriminant is noise in
 // float: rays that hit it miss, rays that pass it hit, and the depth of the
 // rest is off by about R (docs/stages/03-sphere.md has the table that
-// tests/stage03_sphere.cpp measures).
+// tests/stage03_sphere.cpp measures). The library intersects spheres by the
+// stable method of sphere_stable.hpp instead.
 //
-// The stable method (Haines, Guenther, Akenine-Moller, "Precision Improvements
-// for Ray/Sphere Intersection", Ray Tracing Gems, 2019, ch. 7) rewrites both
-// steps; with f = p - c, a = d.d, b = f.d (half the usual b), c = f.f - R^2:
-//   1. the discriminant from the perpendicular vector from c to the ray's line,
-//          b^2 - a c = a (R^2 - |f - (f.d^)d^|^2),   d^ = d / |d|,
-//      a short vector (at most R long for a hit), so nothing large cancels;
-//   2. the roots from a sum of terms of one sign and the product of the roots,
-//          q = -(b + sign(b) sqrt(b^2 - a c)),   t0 = c / q,   t1 = q / a.
-// One change from the chapter: c = |f|^2 - R^2 itself cancels when the origin
-// is close to the surface of a sphere much larger than that distance (a
-// "ground" sphere of radius 1e4 seen from height 1: hundreds of ulps in
-// float), so c is formed in a wider type in which the products of reals are
-// exact or nearly so (pbrt, 3rd ed., sec. A.5.1, solves its quadratics in
-// double for the same reason).
 #pragma once
 
 #include <cmath>
-#include <type_traits>
 
 #include "hit_record.hpp"
 #include "ray.hpp"
+#include "sphere_shape.hpp"
 #include "vec.hpp"
 
 namespace rt {
-
-struct sphere {
-    vec3 center{0};     ///< c
-    real radius = 1;    ///< R
-    int material = -1;  ///< index into scene::materials; -1: the default material
-};
 
 /// The textbook quadratic, exactly as the course gives it: the nearest root t
 /// in [tmin, tmax]; fills the hit record (point, outward normal turned towards
@@ -78,72 +59,6 @@ inline bool hit_sphere_textbook(const sphere& s, const ray& r, real tmin, real t
     rec.b1 = rec.b2 = 0;
     return true;
     // RT_EXERCISE_END
-}
-
-namespace detail {
-
-/// A type with more precision than real, for the one term that needs it.
-using wider_real = std::conditional_t<std::is_same<real, float>::value, double, long double>;
-
-} // namespace detail
-
-/// The roots t0 <= t1 of the ray-sphere quadratic by the stable method of Ray
-/// Tracing Gems ch. 7 (see the top of this file); false when the ray's line
-/// misses the sphere, or when d = 0. A tangent ray has t0 == t1.
-inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t1)
-{
-    using wide = detail::wider_real;
-    const vec3& d = r.direction;
-    const real R = s.radius;
-    const vec3 f = r.origin - s.center;
-    const real a = glm::dot(d, d);
-    const real b = glm::dot(f, d);
-    const vec3 d_unit = d / std::sqrt(a);
-    const vec3 perpendicular = f - glm::dot(f, d_unit) * d_unit; // from c to the closest point of the line
-    const real discriminant = a * (R * R - glm::dot(perpendicular, perpendicular));
-    if (!(discriminant >= 0)) // also false for NaN, from d = 0
-        return false;
-    const real q = -(b + std::copysign(std::sqrt(discriminant), b));
-    if (q == 0) { // b = 0 and a tangent line: the origin is the point of contact
-        t0 = t1 = 0;
-        return true;
-    }
-    const wide c = wide(f.x) * f.x + wide(f.y) * f.y + wide(f.z) * f.z - wide(R) * R;
-    t0 = real(c / q);
-    t1 = q / a;
-    if (t0 > t1) {
-        const real swap = t0;
-        t0 = t1;
-        t1 = swap;
-    }
-    return true;
-}
-
-/// The library's default sphere intersection: the stable roots, the nearest in
-/// [tmin, tmax], and the hit record as hit_sphere_textbook fills it (untouched
-/// on a miss). The normal is normalize(point - c) rather than (point - c) / R,
-/// so it is unit length even where the computed point is an ulp off the surface.
-inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
-{
-    real t0 = 0, t1 = 0;
-    if (!sphere_roots_stable(s, r, t0, t1))
-        return false;
-    real t = t0;
-    if (!(tmin <= t && t <= tmax)) {
-        t = t1;
-        if (!(tmin <= t && t <= tmax))
-            return false;
-    }
-    rec.t = t;
-    rec.point = r.at(t);
-    const vec3 outward = glm::normalize(rec.point - s.center);
-    rec.front_face = glm::dot(r.direction, outward) <= 0;
-    rec.geometric_normal = rec.front_face ? outward : -outward;
-    rec.normal = rec.geometric_normal;
-    rec.material = s.material;
-    rec.primitive = 0;
-    rec.b1 = rec.b2 = 0;
-    return true;
 }
 
 } // namespace rt

@@ -30,12 +30,13 @@
 #include <rt/camera.hpp>
 #include <rt/hit_record.hpp>
 #include <rt/image.hpp>
-#include <rt/image_io.hpp>
+#include <rt/atomic_file.hpp>
 #include <rt/scene.hpp>
-#include <rt/scene_loader.hpp>
 #include <rt/sphere.hpp>
+#include <rt/sphere_stable.hpp>
 
 #include "stage_main.hpp"
+#include "support.hpp"
 
 namespace {
 
@@ -104,7 +105,7 @@ int main(int argc, char** argv)
         for (const std::string& output : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
             rt::check_writable(output); // fail before the work, not after it
 
-        const rt::scene s = rt::load_scene(scene_path);
+        const rt::scene s = stage::load_scene(scene_path);
         std::vector<rt::sphere> spheres;
         std::vector<std::uint32_t> shape_index;
         std::size_t skipped_triangles = 0, skipped_meshes = 0;
@@ -149,11 +150,11 @@ int main(int argc, char** argv)
                 depth_view.pixels[k] =
                     rt::color(range > 0 ? 1.0f - 0.75f * (depths.pixels[k].r - nearest) / range : 1.0f);
 
-        rt::save_image(hit_png, hits, 1.0f);
-        rt::save_image(normal_png, normals, 1.0f);
-        rt::save_image(normal_pfm, normal_values);
-        rt::save_image(depth_pfm, depths);
-        rt::save_image(depth_png, depth_view, 1.0f);
+        stage::save_image(hit_png, hits, 1.0f);
+        stage::save_image(normal_png, normals, 1.0f);
+        stage::save_image(normal_pfm, normal_values);
+        stage::save_image(depth_pfm, depths);
+        stage::save_image(depth_png, depth_view, 1.0f);
 
         std::cerr << "stage03_sphere: " << spheres.size() << " sphere(s) intersected with the " << method << " method";
         if (skipped_triangles + skipped_meshes > 0)
