@@ -80,16 +80,23 @@ inline bool hit_shape(const shape& item, const ray& r, real tmin, real tmax, hit
     return hit_mesh(std::get<mesh>(item), r, tmin, tmax, rec);
 }
 
-/// The course's group: loop over all the shapes of the scene and keep the
-/// closest hit in [tmin, tmax]; rec.shape is the index of the shape hit.
-inline bool closest_hit_list(const scene& s, const ray& r, real tmin, real tmax, hit_record& rec)
+/// How the list tests one shape: its closest hit in [tmin, tmax], the record
+/// filled but for rec.shape. hit_shape (the robust methods) by default; the
+/// stage-04 program passes the textbook methods (stages 03 and 04) instead.
+using shape_hit_function = bool (*)(const shape& item, const ray& r, real tmin, real tmax, hit_record& rec);
+
+/// The course's group: loop over all the shapes of the scene, testing each
+/// with `hit`, and keep the closest hit in [tmin, tmax]; rec.shape is the
+/// index of the shape hit. At an equal t the later shape wins.
+inline bool closest_hit_list(const scene& s, const ray& r, real tmin, real tmax, hit_record& rec,
+                             shape_hit_function hit = hit_shape)
 {
     // RT_EXERCISE_BEGIN(stage04: closest hit over the list of shapes)
     bool hit_anything = false;
     real closest = tmax;
     hit_record candidate;
     for (std::size_t i = 0; i < s.shapes.size(); ++i) {
-        if (hit_shape(s.shapes[i], r, tmin, closest, candidate)) {
+        if (hit(s.shapes[i], r, tmin, closest, candidate)) {
             hit_anything = true;
             closest = candidate.t;
             rec = candidate;

@@ -1,6 +1,8 @@
-// Stage 01 - load a scene and print what a student needs to check it:
-// the camera frame e, u, v, w and window, the counts of shapes, materials and
-// lights, and the scene bounds.
+// Stage 01 - load a scene and print what a student needs to check it: the
+// camera statement as loaded (projection, eye, look-at, up, field of view or
+// window, focal distance), the counts of shapes, materials and lights, and the
+// scene bounds. It runs stage 01's code and nothing later: the camera frame
+// u, v, w is stage 02's (stage02_generate_rays prints it).
 //
 //     stage01_load_scene scenes/showcase.scene
 #include <cstdio>
@@ -9,9 +11,9 @@
 
 #include <rt/camera.hpp>
 #include <rt/scene.hpp>
-#include <rt/scene_loader.hpp>
 
 #include "stage_main.hpp"
+#include "support.hpp"
 
 namespace {
 
@@ -21,7 +23,8 @@ void print_vector(const char* name, const rt::vec3& v)
 }
 
 const char* usage = "usage: stage01_load_scene SCENE\n"
-                    "Loads SCENE and prints its camera frame, window, counts and bounds.\n";
+                    "Loads SCENE and prints its camera as loaded, the counts of shapes, materials and\n"
+                    "lights, and the scene bounds (stage 01's code only).\n";
 
 } // namespace
 
@@ -39,17 +42,24 @@ int main(int argc, char** argv)
         if (!args.done())
             throw rt::error("expected one scene file, found also '" + args.peek() + "'; usage: stage01_load_scene SCENE");
 
-        const rt::scene s = rt::load_scene(path);
-        const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+        const rt::scene s = stage::load_scene(path);
         std::printf("scene %s\n", path.c_str());
         std::printf("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples, s.max_depth);
-        std::printf("camera %s\n", s.cam.kind == rt::projection::perspective ? "perspective" : "orthographic");
-        print_vector("e", gen.e);
-        print_vector("u", gen.basis.u);
-        print_vector("v", gen.basis.v);
-        print_vector("w", gen.basis.w);
-        std::printf("  window   l %g r %g b %g t %g, focal distance d %g\n", double(gen.plane.l), double(gen.plane.r),
-                    double(gen.plane.b), double(gen.plane.t), double(gen.d));
+        const rt::camera& cam = s.cam;
+        std::printf("camera %s\n", cam.kind == rt::projection::perspective ? "perspective" : "orthographic");
+        print_vector("eye", cam.eye);
+        print_vector("look_at", cam.look_at);
+        print_vector("up", cam.up);
+        if (cam.plane)
+            std::printf("  window   l %g r %g b %g t %g (as given)\n", double(cam.plane->l), double(cam.plane->r),
+                        double(cam.plane->b), double(cam.plane->t));
+        else if (cam.fov_degrees)
+            std::printf("  fov      %g degrees (vertical)\n", double(*cam.fov_degrees));
+        else
+            std::printf("  fov      none given: %s\n", cam.kind == rt::projection::perspective
+                                                         ? "45 degrees (the default)"
+                                                         : "the window [-1, 1] in v, widened to the aspect (the default)");
+        std::printf("  focal    %g\n", double(cam.focal_distance));
 
         std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0;
         for (const rt::shape& item : s.shapes) {

@@ -35,19 +35,56 @@
 #include <rt/sphere.hpp>
 #include <rt/sphere_stable.hpp>
 
+#include "pixel_story.hpp"
 #include "stage_main.hpp"
 #include "support.hpp"
 
 namespace {
 
 const char* usage =
-    "usage: stage03_sphere SCENE [-o PREFIX] [--method textbook|stable]\n"
+    "usage: stage03_sphere SCENE [-o PREFIX] [--method textbook|stable] [--pixel I J]\n"
     "Intersects one ray per pixel with the scene's spheres (triangles and meshes are\n"
     "stage 04 and are skipped) and writes PREFIX-hit.png, PREFIX-normal.png,\n"
     "PREFIX-normal.pfm, PREFIX-depth.pfm and PREFIX-depth.png.\n"
     "  -o PREFIX        where to write (default stage03)\n"
     "  --method M       textbook: the course's quadratic (the stage-03 exercise, the default)\n"
-    "                   stable: the library's method (Ray Tracing Gems ch. 7)\n";
+    "                   stable: the library's method (Ray Tracing Gems ch. 7)\n"
+    "  --pixel I J      tell the story of one pixel instead of writing images: its camera\n"
+    "                   ray, every sphere it hits in loop order, the nearest hit and the\n"
+    "                   values written; I is the column from the left, J the row from the top\n"
+    "  --pixel-json I J the same as JSON (infinities are null)\n";
+
+/// The spheres through the loop of closest_sphere_hit, as an accelerator for
+/// the pixel's story; every sphere that the ray hits is written to
+/// `candidates` in loop order.
+struct sphere_list {
+    const std::vector<rt::sphere>* spheres;
+    const std::vector<std::uint32_t>* shape_index;
+    bool (*hit)(const rt::sphere&, const rt::ray&, rt::real, rt::real, rt::hit_record&);
+    std::vector<std::string>* candidates;
+
+    bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& closest) const
+    {
+        bool found = false;
+        for (std::size_t k = 0; k < spheres->size(); ++k) {
+            rt::hit_record rec;
+            if (hit((*spheres)[k], r, tmin, tmax, rec)) {
+                found = true;
+                tmax = rec.t;
+                closest = rec;
+                closest.shape = (*shape_index)[k];
+                candidates->push_back("shape " + std::to_string(closest.shape) + " at t " + std::to_string(rec.t) +
+                                      " (nearest so far)");
+            }
+        }
+        return found;
+    }
+    bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const
+    {
+        rt::hit_record unused;
+        return closest_hit(r, tmin, tmax, unused);
+    }
+};
 
 using hit_function = bool (*)(const rt::sphere&, const rt::ray&, rt::real, rt::real, rt::hit_record&);
 
@@ -76,6 +113,7 @@ int main(int argc, char** argv)
     return stage::run("stage03_sphere", [&] {
         stage::arguments args(argc, argv);
         std::string scene_path, prefix = "stage03", method = "textbook";
+        stage::pixel_request pixel;
         while (!args.done()) {
             const std::string arg = args.take();
             if (arg == "--help" || arg == "-h") {
@@ -89,8 +127,11 @@ int main(int argc, char** argv)
                 method = args.value_of("--method");
                 if (method != "textbook" && method != "stable")
                     throw rt::error("--method: expected textbook or stable, found '" + method + "'");
+            } else if (arg == "--pixel" || arg == "--pixel-json") {
+                stage::read_pixel(args, arg, pixel);
             } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --method, --help), found '" + arg + "'; see --help");
+                throw rt::error("expected an option (-o, --method, --pixel, --pixel-json, --help), found '" + arg +
+                                "'; see --help");
             } else if (scene_path.empty()) {
                 scene_path = arg;
             } else {
@@ -102,8 +143,9 @@ int main(int argc, char** argv)
         const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
                           normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",
                           depth_png = prefix + "-depth.png";
-        for (const std::string& output : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
-            rt::check_writable(output); // fail before the work, not after it
+        if (!pixel.wanted)
+            for (const std::string& output : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
+                rt::check_writable(output); // fail before the work, not after it
 
         const rt::scene s = stage::load_scene(scene_path);
         std::vector<rt::sphere> spheres;
@@ -122,6 +164,39 @@ int main(int argc, char** argv)
         const hit_function hit = method == "stable" ? hit_function(rt::hit_sphere) : hit_function(rt::hit_sphere_textbook);
 
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+        if (pixel.wanted) {
+            stage::story st;
+            st.program = "stage03_sphere";
+            stage::place_pixel(st, pixel.column, pixel.row, gen.nx, gen.ny);
+            st.camera = rt::pixel_ray(gen, st.i, st.j);
+            std::vector<std::string> candidates;
+            const sphere_list list{&spheres, &shape_index, hit, &candidates};
+            rt::hit_record rec;
+            const bool found = stage::recording<sphere_list>(list, st.queries)
+                                   .closest_hit(st.camera, 0, std::numeric_limits<rt::real>::infinity(), rec);
+            stage::name_queries(st);
+            std::string order;
+            for (const std::string& line : candidates)
+                order += (order.empty() ? "" : "; ") + line;
+            st.values.push_back({"spheres hit in loop order:", order.empty() ? "none" : order});
+            st.values.push_back({"method:", method});
+            if (found) {
+                const rt::color n(rec.normal);
+                const rt::color shown = (n + rt::color(1)) * 0.5f;
+                st.linear = shown;
+                st.values.push_back({"hit image:", "white"});
+                st.values.push_back({"normal image (n + 1) / 2:", std::to_string(shown.r) + " " + std::to_string(shown.g) +
+                                                                     " " + std::to_string(shown.b)});
+                st.values.push_back({"depth t |d|:", std::to_string(rec.t * glm::length(st.camera.direction))});
+            } else {
+                st.values.push_back({"hit image:", "black (a miss)"});
+            }
+            if (pixel.json)
+                stage::print_story_json(std::cout, st, s);
+            else
+                stage::print_story(std::cout, st, s);
+            return 0;
+        }
         rt::image hits(s.width, s.height), normals(s.width, s.height), normal_values(s.width, s.height),
             depths(s.width, s.height);
         float nearest = std::numeric_limits<float>::infinity(), farthest = 0;

@@ -18,6 +18,7 @@ int main(int argc, char** argv)
         stage::arguments args(argc, argv);
         std::string scene_path, output = "shadows.png", offset = "robust";
         rt::real epsilon = rt::real(1e-4);
+        stage::pixel_request pixel;
         while (!args.done()) {
             const std::string arg = args.take();
             if (arg == "--help" || arg == "-h") {
@@ -26,7 +27,8 @@ int main(int argc, char** argv)
                              "  -o OUTPUT        .png, .ppm or .pfm (default shadows.png)\n"
                              "  --offset robust  start shadow rays with the offset of Ray Tracing Gems ch. 6 (default)\n"
                              "  --offset fixed   start them at the hit point and skip hits closer than E\n"
-                             "  --epsilon E      the fixed epsilon (default 1e-4)\n";
+                             "  --epsilon E      the fixed epsilon (default 1e-4)\n"
+                          << stage::pixel_help;
                 return 0;
             } else if (arg == "-o") {
                 output = args.value_of("-o");
@@ -44,8 +46,11 @@ int main(int argc, char** argv)
                 } catch (const std::exception&) {
                     throw rt::error("--epsilon: expected a non-negative number, found '" + text + "'");
                 }
+            } else if (arg == "--pixel" || arg == "--pixel-json") {
+                stage::read_pixel(args, arg, pixel);
             } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --offset, --epsilon, --help), found '" + arg + "'; see --help");
+                throw rt::error("expected an option (-o, --offset, --epsilon, --pixel, --pixel-json, --help), found '" +
+                                arg + "'; see --help");
             } else if (scene_path.empty()) {
                 scene_path = arg;
             } else {
@@ -56,14 +61,14 @@ int main(int argc, char** argv)
             throw rt::error("expected a scene file, found none; see --help");
         const bool robust = offset == "robust";
         stage::render_shaded(
-            "stage06_shadows", scene_path, output,
-            [&](const rt::scene& s, const rt::accelerator& accel, const rt::ray& r) {
+            "stage06_shadows", scene_path, output, pixel, {true, false},
+            [&](const rt::scene& s, const auto& world, const rt::ray& r) {
                 rt::hit_record hit;
-                if (!accel.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))
+                if (!world.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))
                     return s.background;
                 return rt::direct_lighting(s, hit, r.direction, [&](const rt::light_sample& sample) {
-                    return robust ? rt::light_visible(accel, hit, sample)
-                                  : rt::light_visible_fixed_epsilon(accel, hit, sample, epsilon);
+                    return robust ? rt::light_visible(world, hit, sample)
+                                  : rt::light_visible_fixed_epsilon(world, hit, sample, epsilon);
                 });
             });
         return 0;

@@ -1,46 +1,70 @@
 // shaded_stage.hpp - what the stage 05, 06 and 07 programs share: read
-// "SCENE [-o OUTPUT] [stage options]", build the scene's accelerator, render
-// one centred sample per pixel with the stage's colour function, and store it.
+// "SCENE [-o OUTPUT] [--pixel I J] [stage options]", render one centred
+// sample per pixel with the stage's colour function and the library's
+// accelerator (stage::world, compiled once), and store it; or, with --pixel,
+// tell that pixel's story (pixel_story.hpp).
 #pragma once
 
 #include <functional>
 #include <iostream>
 #include <string>
 
+#include <rt/atomic_file.hpp>
 #include <rt/camera.hpp>
-#include <rt/image_io.hpp>
-#include <rt/intersect.hpp>
-#include <rt/renderer.hpp>
 #include <rt/scene.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/shading.hpp>
 
+#include "pixel_story.hpp"
 #include "stage_main.hpp"
+#include "support.hpp"
 
 namespace stage {
 
-/// The colour of one camera ray, given the scene and its accelerator.
-using color_function = std::function<rt::color(const rt::scene&, const rt::accelerator&, const rt::ray&)>;
+/// What the pixel's story explains: shadow rays (stages 06 and 07) and
+/// light falloff, as the stage's colour function uses them.
+struct story_options {
+    bool shadows = false;
+    bool falloff = false;
+};
 
-/// Renders `scene_path` with `shade` to `output` (format from the extension);
-/// `adjust` may change the loaded scene first (a command-line override).
-inline void render_shaded(const std::string& program, const std::string& scene_path, const std::string& output,
-                          const color_function& shade, const std::function<void(rt::scene&)>& adjust = {})
+/// Renders `scene_path` with `colour` to `output` (format from the extension),
+/// or prints the story of `pixel`. `colour(scene, accelerator, ray)` must take
+/// any accelerator (a generic lambda): stage::world for the image, a
+/// stage::recording of it for the story. `adjust` may change the loaded scene
+/// first (a command-line override).
+template <class Colour>
+void render_shaded(const std::string& program, const std::string& scene_path, const std::string& output,
+                   const pixel_request& pixel, const story_options& explain, const Colour& colour,
+                   const std::function<void(rt::scene&)>& adjust = {})
 {
-    rt::check_writable(output); // fail before the work, not after it
-    rt::scene s = rt::load_scene(scene_path);
+    if (!pixel.wanted)
+        rt::check_writable(output); // fail before the work, not after it
+    rt::scene s = stage::load_scene(scene_path);
     if (adjust)
         adjust(s);
-    const rt::accelerator accel(s);
-    rt::render_options options;
-    options.width = s.width;
-    options.height = s.height;
-    options.samples_per_pixel = 1;
-    options.sampler = rt::sampler_kind::center; // one ray through each pixel centre, as in the book
+    const stage::world w(s);
     const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
-    const rt::render_result result = rt::render(
-        options, [&gen](rt::real x, rt::real y) { return rt::generate_ray(gen, x, y); },
-        [&](const rt::ray& r, rt::sample_context&) { return shade(s, accel, r); });
-    rt::save_image(output, result.pixels, 2.2f);
+    if (pixel.wanted) {
+        story st;
+        st.program = program;
+        place_pixel(st, pixel.column, pixel.row, gen.nx, gen.ny);
+        st.camera = rt::pixel_ray(gen, st.i, st.j);
+        st.linear = colour(s, recording<stage::world>(w, st.queries), st.camera);
+        name_queries(st);
+        explain_lights(st, s, explain.shadows, explain.falloff,
+                       [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,
+                          const rt::color& I) { return rt::blinn_phong(m, n, v, l, I); });
+        st.values.push_back({"stored bytes (clamped, gamma 2.2):", stored_bytes(st.linear, 2.2f)});
+        if (pixel.json)
+            print_story_json(std::cout, st, s);
+        else
+            print_story(std::cout, st, s);
+        return;
+    }
+    const rt::image pixels = render_centres(
+        s.width, s.height, [&gen](rt::real x, rt::real y) { return rt::generate_ray(gen, x, y); },
+        [&](const rt::ray& r) { return colour(s, w, r); });
+    save_image(output, pixels, 2.2f);
     std::cerr << program << ": wrote " << output << " (" << s.width << "x" << s.height << ")\n";
 }
 

@@ -34,6 +34,39 @@ private:
     std::size_t next_ = 0;
 };
 
+/// --pixel I J or --pixel-json I J: the pixel whose story a program tells
+/// (pixel_story.hpp) instead of writing its image.
+struct pixel_request {
+    bool wanted = false;
+    bool json = false;
+    int column = 0, row = 0;  ///< from the left, from the top (the stored image's convention)
+};
+
+/// The help lines every program from stage 03 on prints for --pixel.
+inline const char* pixel_help =
+    "  --pixel I J      tell the story of one pixel instead of writing images: its camera\n"
+    "                   ray, every hit, light and shadow ray, and its colour; I is the\n"
+    "                   column from the left, J the row from the top (as image viewers count)\n"
+    "  --pixel-json I J the same as JSON (infinities are null)\n";
+
+/// Reads "I J" after `option` (--pixel or --pixel-json): two whole numbers >= 0.
+inline void read_pixel(arguments& args, const std::string& option, pixel_request& p)
+{
+    int values[2] = {0, 0};
+    for (int& value : values) {
+        const std::string text = args.value_of(option);
+        const bool digits = !text.empty() && text.size() <= 9 && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits)
+            throw rt::error(option + ": expected two whole numbers I J (column from the left, row from the top), found '" +
+                            text + "'; see --help");
+        value = std::stoi(text);
+    }
+    p.wanted = true;
+    p.json = option == "--pixel-json";
+    p.column = values[0];
+    p.row = values[1];
+}
+
 /// Runs `body`, turning every exception into one line "program: message" on
 /// stderr and exit code 1, a usage error included (3 for an unfinished exercise).
 template <class Body>

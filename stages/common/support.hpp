@@ -1,28 +1,85 @@
 // support.hpp - the heavy parts of the stage programs that a student's edit
-// rarely touches (reading a scene file, writing an image), compiled once into
-// the library rt_stage_support (stages/CMakeLists.txt) rather than in every
-// program. An edit to an exercise header then rebuilds only the stage's own
-// main.cpp and test suite: a few seconds instead of a minute.
+// rarely touches (reading a scene file or an OBJ model, writing an image, the
+// library's BVH, the threaded renderer), compiled once into small libraries
+// (stages/CMakeLists.txt) rather than in every program. An edit to an exercise
+// header then rebuilds only the stage's own main.cpp and test suite: seconds,
+// not a minute.
 //
 //     const rt::scene s = stage::load_scene("scenes/showcase.scene");
-//     stage::save_image("out.png", pixels, 2.2f);
+//     const stage::world w(s);                        // rt::accelerator: BVH, robust tests
+//     rt::hit_record hit;
+//     if (w.closest_hit(r, 0, rt::infinity, hit)) ...
+//     const rt::image img = stage::render_centres(s.width, s.height, rays, colour);
+//     stage::save_image("out.png", img, 2.2f);
 //
-// Each function is the library's own (rt::load_scene, rt::save_image); only
-// where it is compiled differs.
+// Each function is the library's own (rt::load_scene, rt::load_input,
+// rt::accelerator, rt::render, rt::save_image); only where it is compiled differs.
 #pragma once
 
+#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 
+#include <rt/hit_record.hpp>
 #include <rt/image.hpp>
+#include <rt/ray.hpp>
 #include <rt/scene.hpp>
+#include <rt/vec.hpp>
+
+namespace rt {
+class accelerator;
+}
 
 namespace stage {
 
 /// rt::load_scene: the scene file at `path`, or an rt::error naming file:line:col.
 rt::scene load_scene(const std::string& path);
 
+/// rt::load_input: a scene file, or a bare OBJ model framed by its bounds
+/// (`width` x `height` pixels, default 640 x 480).
+rt::scene load_input(const std::string& path, std::optional<int> width = std::nullopt,
+                     std::optional<int> height = std::nullopt);
+
 /// rt::save_image: `img` to `path` (.png, .ppm or .pfm), written atomically;
 /// 8-bit formats clamp and apply 1/gamma (1: bytes proportional to the values).
 void save_image(const std::string& path, const rt::image& img, float gamma = 2.2f);
+
+/// The three bytes save_image stores for a linear colour `c` ("186 137 0").
+std::string stored_bytes(const rt::color& c, float gamma = 2.2f);
+
+/// The library's scene-level intersection (rt::accelerator: the BVH, the
+/// watertight triangle test, the stable sphere method) for scene `s`, which
+/// must outlive it. Its closest_hit and any_hit are rt::accelerator's, so it
+/// can be passed wherever an accelerator is expected (rt::light_visible,
+/// rt::ray_color). `kind` is "flat", "bvh" or "auto".
+class world {
+public:
+    explicit world(const rt::scene& s, const std::string& kind = "auto");
+    ~world();
+    world(const world&) = delete;
+    world& operator=(const world&) = delete;
+
+    bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const;
+    bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const;
+
+    /// "flat" or "bvh": what "auto" chose.
+    std::string kind() const;
+    /// How many primitives it holds (a mesh's triangles each count) and, for a BVH, its nodes.
+    std::size_t primitives() const;
+    std::size_t nodes() const;
+
+private:
+    std::unique_ptr<const rt::accelerator> impl_;
+};
+
+/// A ray through a film position (pixels from the bottom-left corner).
+using ray_source = std::function<rt::ray(rt::real, rt::real)>;
+/// The colour a ray brings back.
+using colour_function = std::function<rt::color(const rt::ray&)>;
+
+/// An nx x ny image, one ray through each pixel centre (the image of stages
+/// 02-07), traced on every core by rt::render; the top row is stored first.
+rt::image render_centres(int nx, int ny, const ray_source& rays, const colour_function& colour);
 
 } // namespace stage

@@ -7,4 +7,10 @@ namespace stage {
 
 void save_image(const std::string& path, const rt::image& img, float gamma) { rt::save_image(path, img, gamma); }
 
+std::string stored_bytes(const rt::color& c, float gamma)
+{
+    return std::to_string(rt::to_byte(c.r, gamma)) + " " + std::to_string(rt::to_byte(c.g, gamma)) + " " +
+           std::to_string(rt::to_byte(c.b, gamma));
+}
+
 } // namespace stage

@@ -1,0 +1,172 @@
+// pixel_story.hpp - "what happened to the ray through this pixel?": the story
+// a stage program tells with --pixel I J (text) or --pixel-json I J (JSON).
+//
+//     stage07_reflections scenes/showcase.scene --pixel 320 200
+//
+// I is the column from the left and J the row from the top, as an image
+// viewer shows them (the stored image's own convention); the story also gives
+// the book's (i, j), with j counted from the bottom (FCG sec. 4.3.1).
+//
+// How it is told: the stage's own code runs for that one pixel, exactly as it
+// does for the image, but its queries go through `recording`, an accelerator
+// that passes every closest_hit and any_hit on to the real one and writes
+// down what was asked and what came back. So the story is the student's code's
+// story: a wrong offset, a missing normalisation or a shadow ray that hits
+// its own surface shows up in it. The light terms are worked out afterwards
+// from the recorded hits, with the student's blinn_phong.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <rt/hit_record.hpp>
+#include <rt/light.hpp>
+#include <rt/ray.hpp>
+#include <rt/scene.hpp>
+#include <rt/vec.hpp>
+
+namespace stage {
+
+/// One question asked of the scene while the pixel's colour was computed.
+struct query_record {
+    enum class kind { closest, any };
+    kind what = kind::closest;
+    rt::ray r;
+    rt::real tmin = 0, tmax = 0;
+    bool hit = false;
+    rt::hit_record rec;                     ///< closest: the hit; any: the nearest blocker in [tmin, tmax]
+    std::string role;                       ///< "camera", "reflection 1", "shadow (light 0)", ...
+};
+
+/// An accelerator that passes every query on to `inner` and records it.
+/// Anything with closest_hit and any_hit (stage::world, a list) can be inner.
+template <class Inner>
+class recording {
+public:
+    recording(const Inner& inner, std::vector<query_record>& log) : inner_(&inner), log_(&log) {}
+
+    bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const
+    {
+        const bool hit = inner_->closest_hit(r, tmin, tmax, rec);
+        query_record q;
+        q.what = query_record::kind::closest;
+        q.r = r;
+        q.tmin = tmin;
+        q.tmax = tmax;
+        q.hit = hit;
+        if (hit)
+            q.rec = rec;
+        log_->push_back(q);
+        return hit;
+    }
+
+    bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const
+    {
+        const bool hit = inner_->any_hit(r, tmin, tmax);
+        query_record q;
+        q.what = query_record::kind::any;
+        q.r = r;
+        q.tmin = tmin;
+        q.tmax = tmax;
+        q.hit = hit;
+        if (hit) // which shape blocked it: the nearest hit in the same interval
+            inner_->closest_hit(r, tmin, tmax, q.rec);
+        log_->push_back(q);
+        return hit;
+    }
+
+private:
+    const Inner* inner_;
+    std::vector<query_record>* log_;
+};
+
+/// One light's part in the colour of one hit (stages 05-07).
+struct light_term {
+    std::size_t query = 0;     ///< the closest-hit query whose hit this lights
+    std::size_t light = 0;     ///< index into scene::lights
+    rt::light_sample sample;   ///< l, distance, I at the hit point
+    bool behind = false;       ///< the light is behind the surface: no term, no shadow ray
+    bool visible = true;       ///< no shadow ray, or the shadow ray reached the light
+    std::optional<std::size_t> shadow_query;  ///< the any-hit query that decided it
+    rt::color term{0.0f};      ///< blinn_phong(m, n, v, l, I), or 0
+};
+
+/// Everything --pixel prints.
+struct story {
+    std::string program;
+    int column = 0, row = 0;   ///< the image's convention: from the left, from the top
+    int i = 0, j = 0;          ///< the book's: j from the bottom
+    rt::ray camera;
+    std::vector<query_record> queries;
+    std::vector<light_term> lights;
+    std::vector<rt::color> ambient;  ///< per closest-hit query with a hit: ka Ia (stages 05-07)
+    rt::color linear{0.0f};          ///< the colour the stage computed, before storing
+    /// Further lines, in order: ("tone mapped", "0.5 0.25 0"), ("stored bytes", "186 137 0") ...
+    std::vector<std::pair<std::string, std::string>> values;
+};
+
+/// The pixel's story as readable text / as one JSON object.
+void print_story(std::ostream& out, const story& s, const rt::scene& sc);
+void print_story_json(std::ostream& out, const story& s, const rt::scene& sc);
+
+/// --pixel I J: checks the pixel lies in an nx x ny image (an rt::error
+/// otherwise) and fills column, row, i and j.
+void place_pixel(story& s, int column, int row, int nx, int ny);
+
+/// Names each recorded query: the first closest-hit query is the camera ray,
+/// later ones reflections 1, 2, ...; any-hit queries are shadow rays.
+inline void name_queries(story& s)
+{
+    int reflections = 0;
+    for (query_record& q : s.queries) {
+        if (q.what == query_record::kind::any)
+            q.role = "shadow";
+        else
+            q.role = reflections++ == 0 ? "camera" : "reflection " + std::to_string(reflections - 1);
+    }
+}
+
+/// The light terms of every recorded hit, worked out as rt::direct_lighting
+/// does (FCG eq. 4.3): a light behind the surface adds nothing; otherwise the
+/// next shadow query in the log (when `shadows`) says whether it is visible;
+/// a visible light adds blinn_phong(m, n, v, l, I). `shade` is the stage's
+/// Blinn-Phong (rt::blinn_phong), passed in so this header needs no exercise.
+template <class Shade>
+void explain_lights(story& s, const rt::scene& sc, bool shadows, bool falloff, Shade&& shade)
+{
+    std::size_t next_any = 0;
+    for (std::size_t k = 0; k < s.queries.size(); ++k) {
+        const query_record& q = s.queries[k];
+        if (q.what != query_record::kind::closest || !q.hit)
+            continue;
+        const rt::material& m = sc.material_of(q.rec.material);
+        s.ambient.push_back(m.ka * sc.ambient);
+        const rt::vec3 v = -glm::normalize(q.r.direction);
+        next_any = std::max(next_any, k + 1);
+        for (std::size_t n = 0; n < sc.lights.size(); ++n) {
+            light_term t;
+            t.query = k;
+            t.light = n;
+            t.sample = rt::sample_light(sc.lights[n], q.rec.point, falloff);
+            t.behind = glm::dot(q.rec.geometric_normal, t.sample.l) <= 0;
+            if (!t.behind && shadows) {
+                while (next_any < s.queries.size() && s.queries[next_any].what != query_record::kind::any)
+                    ++next_any;
+                if (next_any < s.queries.size()) {
+                    t.shadow_query = next_any;
+                    t.visible = !s.queries[next_any].hit;
+                    s.queries[next_any].role = "shadow (light " + std::to_string(n) + ")";
+                    ++next_any;
+                }
+            }
+            if (!t.behind && t.visible)
+                t.term = shade(m, q.rec.normal, v, t.sample.l, t.sample.intensity);
+            s.lights.push_back(t);
+        }
+    }
+}
+
+} // namespace stage

@@ -1,0 +1,18 @@
+// The threaded renderer for the stage programs, compiled once (support.hpp).
+#include "support.hpp"
+
+#include <rt/renderer.hpp>
+
+namespace stage {
+
+rt::image render_centres(int nx, int ny, const ray_source& rays, const colour_function& colour)
+{
+    rt::render_options options;
+    options.width = nx;
+    options.height = ny;
+    options.samples_per_pixel = 1;
+    options.sampler = rt::sampler_kind::center; // one ray through each pixel centre, as in the book
+    return rt::render(options, rays, [&colour](const rt::ray& r, rt::sample_context&) { return colour(r); }).pixels;
+}
+
+} // namespace stage

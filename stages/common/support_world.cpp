@@ -1,0 +1,28 @@
+// The library's accelerator for the stage programs, compiled once (support.hpp).
+#include "support.hpp"
+
+#include <rt/intersect.hpp>
+
+namespace stage {
+
+world::world(const rt::scene& s, const std::string& kind)
+    : impl_(std::make_unique<const rt::accelerator>(s, rt::parse_accelerator_kind(kind)))
+{
+}
+
+world::~world() = default;
+
+bool world::closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const
+{
+    return impl_->closest_hit(r, tmin, tmax, rec);
+}
+
+bool world::any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const { return impl_->any_hit(r, tmin, tmax); }
+
+std::string world::kind() const { return rt::to_string(impl_->kind()); }
+
+std::size_t world::primitives() const { return impl_->primitive_count(); }
+
+std::size_t world::nodes() const { return impl_->stats().nodes; }
+
+} // namespace stage
