@@ -10,6 +10,7 @@
 // rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
 // include/rt/render_setup.hpp, shared with the viewer (stages/viewer).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -30,8 +31,12 @@
 #include <rt/scene.hpp>
 #include <rt/tonemap.hpp>
 
+#include <rt/raytracer.hpp>
+
+#include "pixel_story.hpp"
 #include "render_arguments.hpp"
 #include "stage_main.hpp"
+#include "support.hpp"
 
 namespace {
 
@@ -47,6 +52,11 @@ const std::string usage = std::string(
     "  --crop X0 X1 Y0 Y1    render columns [X0, X1) and rows [Y0, Y1) (from the top-left)\n"
     "                        of the full image only; pieces paste together exactly\n"
     "  --quiet               no progress bar and no summary line\n"
+    "  --pixel I J           tell the story of one pixel instead of writing the image: the\n"
+    "                        ray through its centre, every hit, light, shadow and mirror ray,\n"
+    "                        the colour and what exposure, tone map and encoding make of it;\n"
+    "                        I is the column from the left, J the row from the top\n"
+    "  --pixel-json I J      the same as JSON (infinities are null)\n"
     "  --help                this text\n";
 
 enum class pattern_kind { none, zoneplate, edge };
@@ -58,6 +68,7 @@ struct settings {
     std::optional<rt::crop_window> crop;
     bool quiet = false;
     bool help = false;
+    stage::pixel_request pixel;
 };
 
 settings read_arguments(stage::arguments& args)
@@ -88,6 +99,8 @@ settings read_arguments(stage::arguments& args)
             c.y0 = int(stage::parse_integer("--crop Y0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
             c.y1 = int(stage::parse_integer("--crop Y1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
             s.crop = c;
+        } else if (arg == "--pixel" || arg == "--pixel-json") {
+            stage::read_pixel(args, arg, s.pixel);
         } else if (arg == "--quiet" || arg == "-q") {
             s.quiet = true;
         } else if (!arg.empty() && arg[0] == '-') {
@@ -144,7 +157,12 @@ int main(int argc, char** argv)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
         if (set.pattern != pattern_kind::none && render.camera)
             throw rt::error("expected --camera or --pattern, found both; a pattern has no camera");
-        rt::check_image_output(set.output); // fail before the work, not after it
+        if (set.pixel.wanted && set.pattern != pattern_kind::none)
+            throw rt::error("expected --pixel or --pattern, found both; a pattern has no rays to tell of");
+        if (set.pixel.wanted && render.aov != rt::aov_kind::none)
+            throw rt::error("expected --pixel or --aov, found both; the story is the shaded image's");
+        if (!set.pixel.wanted)
+            rt::check_image_output(set.output); // fail before the work, not after it
 
         rt::scene scene;
         if (set.pattern != pattern_kind::none)
@@ -155,6 +173,43 @@ int main(int argc, char** argv)
         rt::render_options options = stage::render_options_for(render, scene);
         options.crop = set.crop;
         rt::check_render_options(options);
+
+        if (set.pixel.wanted) {
+            // the ray through the pixel's centre, traced by the stage-07 colour function
+            const stage::world w(scene);
+            const rt::ray_generator gen = rt::make_ray_generator(scene.cam, options.width, options.height);
+            stage::story st;
+            st.program = "stage08_output";
+            stage::place_pixel(st, set.pixel.column, set.pixel.row, gen.nx, gen.ny);
+            st.camera = rt::pixel_ray(gen, st.i, st.j);
+            st.linear = rt::ray_color(scene, stage::recording<stage::world>(w, st.queries), st.camera);
+            stage::name_queries(st);
+            stage::explain_lights(st, scene, true, false,
+                                  [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,
+                                     const rt::color& I) { return rt::blinn_phong(m, n, v, l, I); });
+            const rt::encoding& enc = render.encoding;
+            const rt::color exposed = rt::apply_exposure(st.linear, enc.exposure);
+            const rt::color mapped = rt::apply_tonemap(exposed, enc.tonemap);
+            const std::array<std::uint8_t, 3> bytes = rt::encode_color(st.linear, enc);
+            auto text = [](const rt::color& c) {
+                return stage::number_text(double(c.r)) + " " + stage::number_text(double(c.g)) + " " +
+                       stage::number_text(double(c.b));
+            };
+            st.values.push_back({"samples:", std::to_string(options.samples_per_pixel) +
+                                                 " per pixel in the image; this story follows the ray through the centre"});
+            st.values.push_back({"exposed (2^" + stage::number_text(double(enc.exposure)) + "):", text(exposed)});
+            st.values.push_back({std::string("tone mapped (") + rt::name_of(enc.tonemap) + "):", text(mapped)});
+            st.values.push_back({std::string("stored bytes (") +
+                                     (enc.transfer == rt::transfer_kind::srgb ? std::string("sRGB")
+                                                                              : "gamma " + stage::number_text(double(enc.gamma))) +
+                                     "):",
+                                 std::to_string(bytes[0]) + " " + std::to_string(bytes[1]) + " " + std::to_string(bytes[2])});
+            if (set.pixel.json)
+                stage::print_story_json(std::cout, st, scene);
+            else
+                stage::print_story(std::cout, st, scene);
+            return 0;
+        }
 
         rt::radiance_function radiance;
         rt::ray_source ray_at;
