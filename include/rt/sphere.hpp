@@ -29,10 +29,13 @@
 #pragma once
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <type_traits>
 
 #include "hit_record.hpp"
 #include "ray.hpp"
+#include "rounding.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -42,6 +45,58 @@ struct sphere {
     real radius = 1;    ///< R
     int material = -1;  ///< index into scene::materials; -1: the default material
 };
+
+/// The smallest radius rt represents for a sphere centred at c: 16 u max|c_k|
+/// (u the unit roundoff), that is, about 8 units in the last place of the
+/// centre's largest coordinate. The coordinates of points near c are spaced
+/// that coarsely, so a smaller sphere's hit points round onto a handful of
+/// grid points around its centre, or onto the centre itself: a radius of
+/// 7.1e-4 at a centre near 4e5 (a float ulp there is 0.031) gave hit points
+/// equal to the centre and a (nan, nan, nan) normal (issue 19). The scene
+/// loader refuses such spheres (sphere_fits_its_position); hit_sphere still
+/// returns a unit normal for them.
+inline real smallest_sphere_radius(const vec3& c)
+{
+    const real largest = std::fmax(std::fabs(c.x), std::fmax(std::fabs(c.y), std::fabs(c.z)));
+    return 16 * unit_roundoff * largest;
+}
+
+/// Whether rt can represent the sphere at its position: a radius of at least
+/// smallest_sphere_radius(center), and finite.
+inline bool sphere_fits_its_position(const sphere& s)
+{
+    return std::isfinite(s.radius) && s.radius >= smallest_sphere_radius(s.center) && s.radius > 0;
+}
+
+namespace detail {
+
+inline std::string short_number(double x)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", x);
+    return text;
+}
+
+} // namespace detail
+
+/// The parts of the loader's one-line message for a sphere that does not fit
+/// its position: what was expected, what was found, and the hint.
+inline std::string sphere_radius_expected(const sphere& s)
+{
+    return "a radius of at least " + detail::short_number(double(smallest_sphere_radius(s.center))) +
+           " for a sphere centred at (" + detail::short_number(double(s.center.x)) + ", " +
+           detail::short_number(double(s.center.y)) + ", " + detail::short_number(double(s.center.z)) +
+           ") (8 units in the last place of its largest coordinate)";
+}
+
+inline std::string sphere_radius_found(const sphere& s)
+{
+    return "radius " + detail::short_number(double(s.radius));
+}
+
+constexpr const char* sphere_scale_hint =
+    "the sphere is smaller than the rounding of its centre; move the scene nearer the origin, enlarge the "
+    "sphere, or build with -DRT_USE_DOUBLE=ON";
 
 /// The textbook quadratic, exactly as the course gives it: the nearest root t
 /// in [tmin, tmax]; fills the hit record (point, outward normal turned towards
@@ -108,7 +163,12 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
         t0 = t1 = 0;
         return true;
     }
-    const wide c = wide(f.x) * f.x + wide(f.y) * f.y + wide(f.z) * f.z - wide(R) * R;
+    // f itself in the wider type too: p - c rounded to real loses the sign of
+    // c for an origin just outside a sphere far from the origin (a spawned ray)
+    const wide fx = wide(r.origin.x) - wide(s.center.x);
+    const wide fy = wide(r.origin.y) - wide(s.center.y);
+    const wide fz = wide(r.origin.z) - wide(s.center.z);
+    const wide c = fx * fx + fy * fy + fz * fz - wide(R) * R;
     t0 = real(c / q);
     t1 = q / a;
     if (t0 > t1) {
@@ -122,7 +182,11 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
 /// The library's default sphere intersection: the stable roots, the nearest in
 /// [tmin, tmax], and the hit record as hit_sphere_textbook fills it (untouched
 /// on a miss). The normal is normalize(point - c) rather than (point - c) / R,
-/// so it is unit length even where the computed point is an ulp off the surface.
+/// so it is unit length even where the computed point is an ulp off the
+/// surface; where the point rounds onto the centre (a sphere smaller than
+/// smallest_sphere_radius), it is -d / |d|, a unit normal facing the ray
+/// rather than NaN. (The scene-level intersection, intersect.hpp, then
+/// recomputes point and normal accurately: refine_sphere_hit.)
 inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
     real t0 = 0, t1 = 0;
@@ -136,7 +200,9 @@ inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_
     }
     rec.t = t;
     rec.point = r.at(t);
-    const vec3 outward = glm::normalize(rec.point - s.center);
+    const vec3 local = rec.point - s.center;
+    const real length2 = glm::dot(local, local);
+    const vec3 outward = length2 > 0 && std::isfinite(length2) ? glm::normalize(local) : -glm::normalize(r.direction);
     rec.front_face = glm::dot(r.direction, outward) <= 0;
     rec.geometric_normal = rec.front_face ? outward : -outward;
     rec.normal = rec.geometric_normal;
