@@ -10,11 +10,11 @@
 #include <limits>
 
 #include "hit_record.hpp"
-#include "offset.hpp"
 #include "ray.hpp"
 #include "scene.hpp"
 #include "shading.hpp"
 #include "shadows.hpp"
+#include "spawn.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -43,7 +43,7 @@ color ray_color(const scene& s, const Accelerator& accel, const ray& r, int dept
     const material& m = s.material_of(hit.material);
     const bool mirror = m.km.r > 0 || m.km.g > 0 || m.km.b > 0;
     if (mirror && depth < s.max_depth) {
-        const ray reflected{offset_ray_origin(hit.point, hit.geometric_normal), reflect(r.direction, hit.normal)};
+        const ray reflected = spawn_ray(hit, reflect(r.direction, hit.normal));
         L += m.km * ray_color(s, accel, reflected, depth + 1, options);
     }
     return L;

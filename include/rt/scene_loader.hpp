@@ -566,6 +566,8 @@ private:
             } else
                 s.material = find_material(result_, line);
         });
+        if (!sphere_fits_its_position(s)) // sphere_shape.hpp
+            throw parse_error(line.here(), sphere_radius_expected(s), sphere_radius_found(s), sphere_scale_hint);
         result_.shapes.emplace_back(s);
     }
 
@@ -576,8 +578,7 @@ private:
         tri.a = line.vector("corner a");
         tri.b = line.vector("corner b");
         tri.c = line.vector("corner c");
-        const vec3 n = glm::cross(tri.b - tri.a, tri.c - tri.a);
-        if (!(glm::dot(n, n) > 0))
+        if (triangle_normal(tri.a, tri.b, tri.c) == vec3(0)) // the library's normal (triangle.hpp)
             throw parse_error(where, "a triangle with non-zero area", "three corners on one line",
                               "check the corners");
         line.options({"material"}, [&](const std::string&) { tri.material = find_material(result_, line); });

@@ -4,17 +4,24 @@
 // when a ray from it towards the light hits something before the light. Any hit
 // will do (no need for the closest), and only hits closer than the light count.
 //
-// Where the shadow ray starts matters (offset.hpp): started exactly at the
-// computed hit point, it can hit its own surface ("shadow acne"). The library
-// starts it at offset_ray_origin(p, n_g), the robust offset of Ray Tracing Gems
-// ch. 6; light_visible_fixed_epsilon keeps the textbook's fixed epsilon for
-// comparison (tests and benchmarks show where it fails).
+// Where the shadow ray starts matters: started exactly at the computed hit
+// point, it can hit its own surface ("shadow acne"). The library spawns it
+// past the hit point's rounding error (spawn.hpp, PBR 3rd ed., sec. 3.9.5):
+// spawn_ray_to for the segment to a point light, spawn_ray for a directional
+// light; no such ray hits the surface it leaves, at any scale
+// (tests/library_reintersect.cpp). light_visible_fixed_epsilon keeps the
+// textbook's fixed epsilon for comparison, and offset.hpp the Ray Tracing Gems
+// offset that stage 06 teaches (tests and benchmarks show where they fail).
 #pragma once
+
+#include <cmath>
+#include <limits>
 
 #include "hit_record.hpp"
 #include "light.hpp"
-#include "offset.hpp"
+#include "offset.hpp" // the Ray Tracing Gems offset, which stage 06 compares with
 #include "ray.hpp"
+#include "spawn.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -25,14 +32,13 @@ template <class Accelerator>
 bool light_visible(const Accelerator& accel, const hit_record& hit, const light_sample& sample)
 {
     // RT_EXERCISE_BEGIN(stage06: shadow ray)
-    // Leave on the side the light is on; the light was already found to be on
-    // the outer side of the geometric normal (shading.hpp), so that is +n_g.
-    const vec3 origin = offset_ray_origin(hit.point, hit.geometric_normal);
-    const ray shadow{origin, sample.l};
-    // sample.l is a unit vector, so t is a distance; stop just short of a point
-    // light (the light itself is not an occluder), or never for a directional one.
-    const real tmax = sample.distance * (real(1) - real(1e-4)); // inf stays inf
-    return !accel.any_hit(shadow, real(0), tmax);
+    // A directional light is infinitely far: a ray towards it, never ending.
+    if (!std::isfinite(sample.distance))
+        return !accel.any_hit(spawn_ray(hit, sample.l), real(0), std::numeric_limits<real>::infinity());
+    // A point light: the segment from the hit to the light (t = 1 at the
+    // light), stopped just short of it (the light itself is not an occluder).
+    const ray shadow = spawn_ray_to(hit, hit.point + sample.distance * sample.l);
+    return !accel.any_hit(shadow, real(0), real(1) - shadow_epsilon);
     // RT_EXERCISE_END
 }
 

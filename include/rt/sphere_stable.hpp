@@ -56,7 +56,12 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
         t0 = t1 = 0;
         return true;
     }
-    const wide c = wide(f.x) * f.x + wide(f.y) * f.y + wide(f.z) * f.z - wide(R) * R;
+    // f itself in the wider type too: p - c rounded to real loses the sign of
+    // c for an origin just outside a sphere far from the origin (a spawned ray)
+    const wide fx = wide(r.origin.x) - wide(s.center.x);
+    const wide fy = wide(r.origin.y) - wide(s.center.y);
+    const wide fz = wide(r.origin.z) - wide(s.center.z);
+    const wide c = fx * fx + fy * fy + fz * fz - wide(R) * R;
     t0 = real(c / q);
     t1 = q / a;
     if (t0 > t1) {
@@ -70,7 +75,11 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
 /// The library's default sphere intersection: the stable roots, the nearest in
 /// [tmin, tmax], and the hit record as hit_sphere_textbook fills it (untouched
 /// on a miss). The normal is normalize(point - c) rather than (point - c) / R,
-/// so it is unit length even where the computed point is an ulp off the surface.
+/// so it is unit length even where the computed point is an ulp off the
+/// surface; where the point rounds onto the centre (a sphere smaller than
+/// smallest_sphere_radius), it is -d / |d|, a unit normal facing the ray
+/// rather than NaN. (The scene-level intersection, intersect.hpp, then
+/// recomputes point and normal accurately: refine_sphere_hit.)
 inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
     real t0 = 0, t1 = 0;
@@ -84,7 +93,9 @@ inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_
     }
     rec.t = t;
     rec.point = r.at(t);
-    const vec3 outward = glm::normalize(rec.point - s.center);
+    const vec3 local = rec.point - s.center;
+    const real length2 = glm::dot(local, local);
+    const vec3 outward = length2 > 0 && std::isfinite(length2) ? glm::normalize(local) : -glm::normalize(r.direction);
     rec.front_face = glm::dot(r.direction, outward) <= 0;
     rec.geometric_normal = rec.front_face ? outward : -outward;
     rec.normal = rec.geometric_normal;
