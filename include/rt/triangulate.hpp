@@ -46,9 +46,10 @@
 //     leaves into the triangle. Ear states are kept and only the two
 //     neighbours of a clipped ear are tested again: O(n^2) for n corners.
 //
-// What is refused (polygon_problem, with the fallback in `triangles`): fewer
-// than 3 corners; two consecutive corners at the same place (a zero-length
-// edge); no area (N = 0 with all corners on a line); edges that cross or a
+// What is reported (polygon_problem, with the fallback in `triangles`): fewer
+// than 3 corners (no triangles); two consecutive corners at the same place (a
+// zero-length edge: each run of them is merged into one corner and the rest
+// triangulated, n - 2 - merged triangles); no area (N = 0 with all corners on a line); edges that cross or a
 // corner lying inside another edge, or lobes whose areas cancel (not simple).
 // The fallback is the fan from corner 0 (n - 2 triangles, which the OBJ loader
 // keeps when their area is not zero, and reports: see obj_loader.hpp).
@@ -390,10 +391,23 @@ inline polygon_triangulation triangulate_polygon(const std::vector<vec3>& corner
     }
     for (std::size_t i = 0; i < count; ++i)
         if (corners[i] == corners[(i + 1) % count]) {
-            result.problem = polygon_problem::repeated_corner;
+            // merge each run of repeated corners into one and triangulate the
+            // rest: n - 2 - (merged) triangles
+            std::vector<std::uint32_t> kept;
+            std::vector<vec3> rest;
+            for (std::size_t k = 0; k < count; ++k)
+                if (corners[k] != corners[(k + 1) % count]) {
+                    kept.push_back(std::uint32_t(k));
+                    rest.push_back(corners[k]);
+                }
+            polygon_triangulation merged = triangulate_polygon(rest);
+            for (corner3& tri : merged.triangles)
+                for (std::uint32_t& corner : tri)
+                    corner = kept[corner];
+            result.triangles = std::move(merged.triangles);
+            result.problem = merged.problem == polygon_problem::none ? polygon_problem::repeated_corner : merged.problem;
             result.at[0] = std::uint32_t(i);
             result.at[1] = std::uint32_t((i + 1) % count);
-            result.triangles = detail::fan(count);
             return result;
         }
     const detail::dvec3 n = detail::newell_normal(corners);
