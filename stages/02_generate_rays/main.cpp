@@ -19,6 +19,7 @@ const char* usage =
     "usage: stage02_generate_rays SCENE [-o OUTPUT] [--projection perspective|orthographic]\n"
     "Writes an image whose pixels show the direction of each pixel's ray.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default rays.png)\n"
+    "  --strict        warnings of the OBJ files (missing materials) are errors\n"
     "  --projection P  override the scene camera's projection\n";
 
 } // namespace
@@ -28,6 +29,7 @@ int main(int argc, char** argv)
     return stage::run("stage02_generate_rays", [&] {
         stage::arguments args(argc, argv);
         std::string scene_path, output = "rays.png", projection;
+        rt::load_options options;
         while (!args.done()) {
             const std::string arg = args.take();
             if (arg == "--help" || arg == "-h") {
@@ -35,6 +37,8 @@ int main(int argc, char** argv)
                 return 0;
             } else if (arg == "-o") {
                 output = args.value_of("-o");
+            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                options.obj.strict = true;
             } else if (arg == "--projection") {
                 projection = args.value_of("--projection");
                 if (projection != "perspective" && projection != "orthographic")
@@ -52,7 +56,7 @@ int main(int argc, char** argv)
         rt::check_writable(output); // fail before the work, not after it
         rt::check_image_path(output);
 
-        rt::scene s = rt::load_scene(scene_path);
+        rt::scene s = rt::load_scene(scene_path, options);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
             s.cam.kind = rt::projection::orthographic;
             s.cam.fov_degrees.reset();

@@ -44,6 +44,7 @@ const char* usage =
     "  --accel A       flat, bvh or auto (default auto)\n"
     "  --view X Y Z    direction from the mesh's centre to the camera (default 0 0 1)\n"
     "  --repeat N      trace the image N times and report the fastest (default 1)\n"
+    "  --strict        warnings of the OBJ files (missing materials) are errors\n"
     "  --crossover     time the flat list against the BVH for 1 to 256 primitives\n";
 
 using clock_type = std::chrono::steady_clock;
@@ -287,11 +288,14 @@ int main(int argc, char** argv)
         int width = 0, height = 0, repeat = 1;
         rt::accelerator_kind kind = rt::accelerator_kind::automatic;
         rt::vec3 view(0, 0, 1);
+        rt::load_options options;
         while (!args.done()) {
             const std::string arg = args.take();
             if (arg == "--help" || arg == "-h") {
                 std::cout << usage;
                 return 0;
+            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                options.obj.strict = true;
             } else if (arg == "--crossover") {
                 return crossover();
             } else if (arg == "-o") {
@@ -333,7 +337,7 @@ int main(int argc, char** argv)
         rt::scene world_scene;
         const auto load_start = clock_type::now();
         if (ends_with(input, ".scene")) {
-            world_scene = rt::load_scene(input);
+            world_scene = rt::load_scene(input, options);
             if (width == 0) {
                 width = world_scene.width;
                 height = world_scene.height;
@@ -356,7 +360,8 @@ int main(int argc, char** argv)
                       << " degenerate triangles dropped) (load " << std::setprecision(3) << seconds_since(load_start)
                       << " s)\n";
         } else {
-            rt::obj_result loaded = rt::load_obj(input);
+            rt::obj_result loaded = rt::load_obj(input, options.obj);
+            rt::require_triangles(loaded); // as stage08: no black image from a model without triangles
             std::cout << rt::summary(loaded) << " (load " << std::setprecision(3) << seconds_since(load_start)
                       << " s)\n";
             world_scene.materials = std::move(loaded.materials);
