@@ -870,3 +870,24 @@ TEST_CASE("text: a scene file with a byte order mark and CR LF reads like one wi
     // columns count from the character after the mark
     CHECK(starts_with(scene_error("\xEF\xBB\xBFspere\n"), "bad.scene:1:1: expected a keyword, found 'spere'"));
 }
+
+TEST_CASE("messages: an OBJ file that cannot be opened is named without 'a readable an'")
+{
+    const scratch folder;
+    const fs::path path = folder.write("m.obj", triangle_obj);
+    fs::permissions(path, fs::perms::none);
+    std::string message;
+    try {
+        rt::load_obj(path);
+    } catch (const rt::error& e) {
+        message = e.what();
+    }
+    fs::permissions(path, fs::perms::owner_all);
+    if (message.empty()) {
+        MESSAGE("skipped: this user reads a file without permissions (root)");
+        return;
+    }
+    CAPTURE(message);
+    CHECK(!has(message, "a readable an"));
+    CHECK(has(message, "expected an OBJ file that can be read, found one that cannot be opened"));
+}

@@ -469,7 +469,7 @@ inline std::string read_text(const std::filesystem::path& path, const std::strin
                             std::to_string(size) + "; raise obj_limits::max_bytes (load_options::obj for a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw error(at, "expected a readable " + what + " file, found one that cannot be opened: '" + name +
+        throw error(at, "expected " + what + " file that can be read, found one that cannot be opened: '" + name +
                             "'; check its permissions");
     std::string text;
     if (!ec)
@@ -905,7 +905,7 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
                 polygon_triangulation cut = triangulate_polygon(polygon);
                 if (cut.problem == polygon_problem::not_simple)
                     warnings.add(detail::obj_warnings::not_simple, at, "a simple polygon",
-                                 "a face of " + std::to_string(corners) + " corners with " + describe(cut.problem),
+                                 "a face of " + std::to_string(corners) + " corners with " + to_string(cut.problem),
                                  "it is cut into a fan from its first corner; check the face in a modelling program");
                 m.dropped_degenerate += corners - 2 - cut.triangles.size(); // repeated corners merged
                 pieces = std::move(cut.triangles);

@@ -83,7 +83,7 @@ enum class polygon_problem {
 };
 
 /// What went wrong, in words for a message ("two of its edges cross").
-inline const char* describe(polygon_problem problem)
+inline const char* to_string(polygon_problem problem)
 {
     switch (problem) {
     case polygon_problem::none: return "a simple polygon";
