@@ -648,7 +648,7 @@ struct obj_check {
     /// the corners of each face, in file order (tinyobjloader counts them in
     /// an unsigned char), and the line and column of each face of 4 or more
     std::vector<std::uint32_t> face_corners;
-    std::vector<source_location> polygon_at;
+    std::vector<std::pair<int, int>> polygon_at; // line, column
 };
 
 inline obj_check check_obj(const std::string& text, const std::string& name, const std::filesystem::path& folder,
@@ -728,7 +728,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 out.triangles += std::size_t(corners - 2);
                 out.face_corners.push_back(std::uint32_t(corners));
                 if (corners > 3)
-                    out.polygon_at.push_back(keyword_at);
+                    out.polygon_at.emplace_back(keyword_at.line, keyword_at.column);
                 if (out.triangles > limits.max_triangles)
                     throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
                                       "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
@@ -896,9 +896,11 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
                     inside = inside && index >= 0 && std::size_t(index) < vertex_count;
                     polygon.push_back(inside ? m.positions[std::size_t(index)] : vec3(0));
                 }
-                const source_location at = polygon_number < checked.polygon_at.size()
-                                               ? checked.polygon_at[polygon_number]
-                                               : source_location{name};
+                const source_location at =
+                    polygon_number < checked.polygon_at.size()
+                        ? source_location{name, checked.polygon_at[polygon_number].first,
+                                          checked.polygon_at[polygon_number].second}
+                        : source_location{name};
                 ++polygon_number;
                 if (!inside) // cannot happen after the check above; never index out of range
                     continue;
