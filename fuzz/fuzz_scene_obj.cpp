@@ -8,6 +8,7 @@
 // stands for "mesh m.obj", so inputs that are mostly OBJ stay short.
 #include <cstddef>
 #include <cstdint>
+#include <sstream>
 #include <string>
 
 #include <rt/scene_loader.hpp>
@@ -45,11 +46,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     folder.write("s.scene", scene_text);
     folder.write("m.obj", obj_text);
     folder.write("m.mtl", mtl_text);
+    // warnings (missing materials, polygons not simple) are lines of the same
+    // form as the errors: each is checked like one
+    std::ostringstream warnings;
+    rt::load_options options;
+    options.obj.warnings = &warnings;
     try {
-        const rt::scene s = rt::load_scene(folder.path() / "s.scene");
+        const rt::scene s = rt::load_scene(folder.path() / "s.scene", options);
         (void)s;
     } catch (const rt::error& e) {
         fuzz::check_message(e);
     }
+    std::istringstream lines(warnings.str());
+    for (std::string line; std::getline(lines, line);)
+        fuzz::check_message(rt::error(line));
     return 0;
 }

@@ -8,6 +8,7 @@
 // line or calls an exercise, so a student kit passes these cases unchanged.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -130,9 +131,11 @@ TEST_CASE("fuzz: tinyobjloader's warnings never reach a message raw (control byt
 {
     // fuzz_scene_obj, 355 runs: an mtllib name with a byte 0x86 came back inside
     // a 509-byte message that listed every tinyobjloader warning.
-    const std::string message = obj_error("mtllib mm\x86tl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    rt::obj_limits strict;
+    strict.strict = true; // a missing library is a warning, an error only with --strict
+    const std::string message = obj_error("mtllib mm\x86tl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", strict);
     CAPTURE(message);
-    CHECK(at_same_line(message, "m.obj:1: expected the material library it names, found no such file 'mm?tl'"));
+    CHECK(at_same_line(message, "m.obj:1: expected the material library 'mm?tl', found no such file beside the OBJ file"));
     CHECK(is_one_text_line(message));
 }
 
@@ -391,10 +394,12 @@ TEST_CASE("review: line numbers stay right across the pre-check's 64 KiB reads, 
     CHECK(starts_with(obj_error("mtllib m.mtl\r" + triangle_obj, "newmtl a\r\rKd 1 x 0\r"), "m.mtl:3:6: expected a number for Kd g"));
 }
 
-TEST_CASE("review: a missing MTL file is an error at the mtllib line")
+TEST_CASE("review: a missing MTL file is an error at the mtllib line with --strict")
 {
-    CHECK(at_same_line(obj_error("mtllib missing.mtl\n" + triangle_obj),
-                      "m.obj:1: expected the material library it names, found no such file 'missing.mtl'"));
+    rt::obj_limits strict;
+    strict.strict = true;
+    CHECK(at_same_line(obj_error("mtllib missing.mtl\n" + triangle_obj, "", strict),
+                      "m.obj:1: expected the material library 'missing.mtl', found no such file beside the OBJ file"));
     CHECK(at_same_line(obj_error("mtllib   \n" + triangle_obj), "m.obj:1: expected a material library file name"));
     // A library named again, however spelled, is read once: its materials are not added again.
     CHECK(obj_error("mtllib m.mtl ./m.mtl\nmtllib .//m.mtl\n" + triangle_obj, "newmtl red\nKd 1 0 0\n").empty());
@@ -625,4 +630,264 @@ TEST_CASE("outputs: check_image_path accepts exactly the extensions save_image w
         else
             CHECK(fs::exists(folder.path() / name) == checked.empty());
     }
+}
+
+// --- issue 15, part B: polygons, text, materials, messages, range -------------
+
+namespace {
+
+/// What loading `obj` (as m.obj, beside `mtl` as m.mtl when given) gives:
+/// the result, the warning lines (folder name removed) and the error ("" if none).
+struct obj_outcome {
+    rt::obj_result loaded;
+    std::string warnings, error;
+};
+
+obj_outcome load_obj_text(const std::string& obj, const std::string& mtl = "", bool strict = false)
+{
+    const scratch folder;
+    if (!mtl.empty())
+        folder.write("m.mtl", mtl);
+    const fs::path path = folder.write("m.obj", obj);
+    std::ostringstream warnings;
+    rt::obj_limits limits;
+    limits.strict = strict;
+    limits.warnings = &warnings;
+    obj_outcome out;
+    try {
+        out.loaded = rt::load_obj(path, limits);
+    } catch (const rt::error& e) {
+        out.error = e.what();
+    }
+    out.warnings = warnings.str();
+    const std::string prefix = folder.path().string() + "/";
+    for (std::string* text : {&out.warnings, &out.error})
+        for (std::size_t at; (at = text->find(prefix)) != std::string::npos;)
+            text->erase(at, prefix.size());
+    return out;
+}
+
+/// The total area of a loaded mesh's triangles (Heron-free: half the cross product's length).
+double mesh_area(const rt::mesh& m)
+{
+    double area = 0;
+    for (const rt::index3& t : m.triangles) {
+        const glm::dvec3 a(m.positions[t[0]]), b(m.positions[t[1]]), c(m.positions[t[2]]);
+        area += glm::length(glm::cross(b - a, c - a)) / 2;
+    }
+    return area;
+}
+
+std::size_t count_lines(const std::string& text) { return std::size_t(std::count(text.begin(), text.end(), '\n')); }
+
+} // namespace
+
+TEST_CASE("polygons: the issue's concave quad loads as two triangles of area 1.9 (was 2.1)")
+{
+    const obj_outcome out = load_obj_text("v 0 0 0\nv 4 0.5 0\nv 0 1 0\nv 0.2 0.5 0\nf 1 2 3 4\n");
+    REQUIRE(out.error.empty());
+    CHECK(out.loaded.geometry.triangles.size() == 2);
+    CHECK(mesh_area(out.loaded.geometry) == doctest::Approx(1.9).epsilon(1e-6)); // shoelace, worked in library_triangulate
+    CHECK(out.warnings.empty());
+}
+
+TEST_CASE("polygons: a concave heptagon, a 66-corner ring and a 300-corner face keep n - 2 triangles")
+{
+    // heptagon (a comb, area 10: the 4 x 3 rectangle less a notch of area 2)
+    const obj_outcome comb = load_obj_text("v 0 0 0\nv 4 0 0\nv 4 3 0\nv 3 3 0\nv 2 1 0\nv 1 3 0\nv 0 3 0\nf 1 2 3 4 5 6 7\n");
+    REQUIRE(comb.error.empty());
+    CHECK(comb.loaded.geometry.triangles.size() == 5); // tinyobjloader gave 2
+    CHECK(mesh_area(comb.loaded.geometry) == doctest::Approx(10.0).epsilon(1e-6));
+    // the ring: outer circle r = 2 (32 corners), slit, inner circle r = 1 clockwise, slit back
+    const double pi = 3.14159265358979323846;
+    std::string ring;
+    for (int k = 0; k < 32; ++k)
+        ring += "v " + std::to_string(2 * std::cos(2 * pi * k / 32)) + " " + std::to_string(2 * std::sin(2 * pi * k / 32)) + " 0\n";
+    for (int k = 0; k < 32; ++k)
+        ring += "v " + std::to_string(std::cos(2 * pi * k / 32)) + " " + std::to_string(std::sin(2 * pi * k / 32)) + " 0\n";
+    ring += "f";
+    for (int k = 1; k <= 32; ++k)
+        ring += " " + std::to_string(k);
+    ring += " 1 33"; // back to the first outer corner, along the slit to the inner circle
+    for (int k = 31; k >= 1; --k)
+        ring += " " + std::to_string(33 + k);
+    ring += " 33\n"; // 32 + 2 + 31 + 1 = 66 corners
+    const obj_outcome ring_out = load_obj_text(ring);
+    REQUIRE(ring_out.error.empty());
+    CHECK(ring_out.loaded.geometry.triangles.size() == 64);
+    // two regular 32-gons, (1/2) n r^2 sin(2 pi / n) each (printed to 6 decimals: 1e-5)
+    const double ring_area = 0.5 * 32 * std::sin(2 * pi / 32) * (4 - 1);
+    MESSAGE("the 66-corner ring: triangles cover " << mesh_area(ring_out.loaded.geometry) / ring_area
+                                                   << " times its area (tinyobjloader's: 7.4 times, in the issue)");
+    CHECK(mesh_area(ring_out.loaded.geometry) == doctest::Approx(ring_area).epsilon(1e-5));
+    CHECK(ring_out.warnings.empty());
+    // 300 corners: more than tinyobjloader's unsigned char corner count holds
+    std::string big;
+    for (int k = 0; k < 300; ++k)
+        big += "v " + std::to_string(std::cos(2 * pi * k / 300)) + " " + std::to_string(std::sin(2 * pi * k / 300)) + " 0\n";
+    big += "f";
+    for (int k = 1; k <= 300; ++k)
+        big += " " + std::to_string(k);
+    big += "\n";
+    const obj_outcome big_out = load_obj_text(big);
+    REQUIRE(big_out.error.empty());
+    CHECK(big_out.loaded.geometry.triangles.size() == 298);
+    CHECK(mesh_area(big_out.loaded.geometry) == doctest::Approx(0.5 * 300 * std::sin(2 * pi / 300)).epsilon(1e-5));
+}
+
+TEST_CASE("polygons: a face that is not simple loads as a fan with one warning, an error with strict")
+{
+    const std::string bow = "v 0 0 0\nv 2 2 0\nv 2 0 0\nv 0 1 0\nf 1 2 3 4\nf 1 2 3 4\n";
+    const obj_outcome out = load_obj_text(bow);
+    REQUIRE(out.error.empty());
+    CHECK(out.loaded.geometry.triangles.size() == 4);
+    CHECK(count_lines(out.warnings) == 1);
+    CHECK(starts_with(out.warnings, "m.obj:5:1: warning: expected a simple polygon, found a face of 4 corners with edges that cross"));
+    CHECK(has(out.warnings, "(and 1 more like it)"));
+    const obj_outcome strict = load_obj_text(bow, "", true);
+    CHECK(starts_with(strict.error, "m.obj:5:1: expected a simple polygon, found a face of 4 corners"));
+    // repeated corners are merged: no warning, one fewer triangle, counted as dropped
+    const obj_outcome repeated = load_obj_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3 4\n");
+    REQUIRE(repeated.error.empty());
+    CHECK(repeated.loaded.geometry.triangles.size() == 2);
+    CHECK(repeated.loaded.geometry.dropped_degenerate == 1);
+    CHECK(mesh_area(repeated.loaded.geometry) == doctest::Approx(1.0));
+}
+
+TEST_CASE("text: a byte order mark, CR LF and CR are read alike in OBJ and MTL files")
+{
+    const std::string bom = "\xEF\xBB\xBF";
+    // before: the mark hid the first v line and every index shifted
+    const obj_outcome first_v = load_obj_text(bom + "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    REQUIRE(first_v.error.empty());
+    CHECK(first_v.loaded.geometry.positions.size() == 3);
+    CHECK(first_v.loaded.geometry.triangles.size() == 1);
+    // before: "the file has no 'mtllib' line"
+    const obj_outcome library = load_obj_text(bom + "mtllib m.mtl\r\n" + "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nusemtl red\r\nf 1 2 3\r\n",
+                                              bom + "newmtl red\rKd 1 0 0\r");
+    REQUIRE(library.error.empty());
+    CHECK(library.warnings.empty());
+    REQUIRE(library.loaded.materials.size() == 1);
+    CHECK(library.loaded.materials[0].name == "red");
+    CHECK(library.loaded.materials[0].kd.r == 1.0f);
+    REQUIRE(library.loaded.geometry.face_materials.size() == 1);
+    CHECK(library.loaded.geometry.face_materials[0] == 0);
+    // columns count from the character after the mark
+    CHECK(starts_with(load_obj_text(bom + "v 0 0 x\n").error, "m.obj:1:7: expected a number for the vertex z"));
+}
+
+TEST_CASE("text: a backslash at the end of a line continues it, and messages keep the file's lines")
+{
+    const obj_outcome face = load_obj_text("v 0 0 0\nv 1 0 \\\n0\nv 0 1 0\nf 1 2 \\\r\n 3\n");
+    REQUIRE(face.error.empty());
+    CHECK(face.loaded.geometry.positions.size() == 3);
+    CHECK(face.loaded.geometry.triangles.size() == 1);
+    // an error in the continued part is at its own line and column
+    CHECK(starts_with(load_obj_text(triangle_obj + "f 1 2 \\\n  x\n").error, "m.obj:6:3: expected a whole-number index"));
+    // and lines after it keep their numbers
+    CHECK(starts_with(load_obj_text("v 0 0 \\\n0\n" + triangle_obj + "f 1 2 0\n").error, "m.obj:7:7: expected an index other than 0"));
+    // in an MTL file too
+    const obj_outcome mtl = load_obj_text("mtllib m.mtl\nusemtl a\n" + triangle_obj, "newmtl a\nKd 0.5 \\\n 0.25 0\n");
+    REQUIRE(mtl.error.empty());
+    REQUIRE(mtl.loaded.materials.size() == 1);
+    CHECK(mtl.loaded.materials[0].kd.g == 0.25f);
+}
+
+TEST_CASE("materials: a missing library, usemtl without mtllib or of an unknown name warn once and load")
+{
+    const obj_outcome missing = load_obj_text("mtllib gone.mtl\nusemtl red\n" + triangle_obj);
+    REQUIRE(missing.error.empty());
+    CHECK(missing.loaded.geometry.triangles.size() == 1);
+    CHECK(missing.loaded.geometry.face_materials.empty()); // the default material
+    CHECK(count_lines(missing.warnings) == 1);             // the unknown name is not reported again
+    CHECK(starts_with(missing.warnings, "m.obj:1:8: warning: expected the material library 'gone.mtl', found no such file"));
+    const obj_outcome none = load_obj_text("usemtl red\n" + triangle_obj + "usemtl blue\nf 1 2 3\n");
+    REQUIRE(none.error.empty());
+    CHECK(none.loaded.geometry.triangles.size() == 2);
+    CHECK(count_lines(none.warnings) == 1);
+    CHECK(starts_with(none.warnings, "m.obj:1:8: warning: expected a material library ('mtllib') before 'usemtl', found usemtl 'red' without one (and 1 more like it); its faces get the default material"));
+    const obj_outcome unknown = load_obj_text("mtllib m.mtl\nusemtl blue\n" + triangle_obj, "newmtl red\nKd 1 0 0\n");
+    REQUIRE(unknown.error.empty());
+    CHECK(starts_with(unknown.warnings, "m.obj:2:8: warning: expected a material declared in the material library, found 'blue'; its faces get the default material; known: red"));
+    for (const std::string& text : {std::string("mtllib gone.mtl\n"), std::string("usemtl red\n")}) {
+        const obj_outcome strict = load_obj_text(text + triangle_obj, "", true);
+        CHECK(starts_with(strict.error, "m.obj:1:8: expected"));
+        CHECK(strict.warnings.empty());
+    }
+}
+
+TEST_CASE("messages: corners 1/ 1// 1/1/ are the catalogue's one line, not tinyobjloader's text")
+{
+    const std::string prefix = triangle_obj;
+    CHECK(starts_with(load_obj_text(prefix + "f 1// 2// 3//\n").error,
+                      "m.obj:5:6: expected a normal index after the second '/', found the end of the corner '1//'"));
+    CHECK(starts_with(load_obj_text(prefix + "f 1 2 3/1/\n").error,
+                      "m.obj:5:11: expected a normal index after the second '/', found the end of the corner '3/1/'"));
+    CHECK(starts_with(load_obj_text(prefix + "f 1/ 2 3\n").error,
+                      "m.obj:5:5: expected a texture coordinate index after '/'"));
+    for (const char* corner : {"1//", "1/1/", "1/"}) {
+        const std::string message = load_obj_text(prefix + "vt 0 0\nvn 0 0 1\nf " + std::string(corner) + " 2 3\n").error;
+        CAPTURE(message);
+        CHECK(!has(message, "Failed parse"));
+        CHECK(is_one_text_line(message));
+    }
+    // v//vn is still read
+    CHECK(load_obj_text(prefix + "vn 0 0 1\nf 1//1 2//1 3//1\n").error.empty());
+}
+
+TEST_CASE("range: coordinates beyond 1e18 are refused at load, 1e18 loads")
+{
+    CHECK(starts_with(load_obj_text("v -1e19 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").error,
+                      "m.obj:1:3: expected a vertex x within +-1e+18, found a larger one"));
+    CHECK(starts_with(load_obj_text("v 0 0 1e20\n").error, "m.obj:1:7: expected a vertex z within +-1e+18"));
+    CHECK(load_obj_text("v -1e18 -1e18 0\nv 1e18 -1e18 0\nv 0 1e18 0\nf 1 2 3\n").error.empty());
+}
+
+TEST_CASE("empty models: no faces, or zero-area faces only, are one clear error")
+{
+    const auto message_of = [](const std::string& obj) {
+        obj_outcome out = load_obj_text(obj);
+        REQUIRE(out.error.empty());
+        try {
+            rt::require_triangles(out.loaded);
+        } catch (const rt::error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(has(message_of("# only a comment\n"), "expected a model with at least one triangle, found no faces"));
+    // 1 flat triangle, then a face whose repeated corner is merged (1) into a flat triangle (1)
+    CHECK(has(message_of("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 2 3 1\n"),
+              "expected a model with at least one triangle, found only 3 degenerate (zero-area) triangle(s)"));
+    CHECK(message_of(triangle_obj).empty());
+}
+
+TEST_CASE("text: a scene file with a byte order mark and CR LF reads like one without")
+{
+    const std::string scene = "image 4 3\r\ncamera perspective eye 0 0 5 look_at 0 0 0\r\nsphere center 0 0 0 radius 1\r\n";
+    CHECK(scene_error(scene).empty());
+    CHECK(scene_error("\xEF\xBB\xBF" + scene).empty());
+    // columns count from the character after the mark
+    CHECK(starts_with(scene_error("\xEF\xBB\xBFspere\n"), "bad.scene:1:1: expected a keyword, found 'spere'"));
+}
+
+TEST_CASE("messages: an OBJ file that cannot be opened is named without 'a readable an'")
+{
+    const scratch folder;
+    const fs::path path = folder.write("m.obj", triangle_obj);
+    fs::permissions(path, fs::perms::none);
+    std::string message;
+    try {
+        rt::load_obj(path);
+    } catch (const rt::error& e) {
+        message = e.what();
+    }
+    fs::permissions(path, fs::perms::owner_all);
+    if (message.empty()) {
+        MESSAGE("skipped: this user reads a file without permissions (root)");
+        return;
+    }
+    CAPTURE(message);
+    CHECK(!has(message, "a readable an"));
+    CHECK(has(message, "expected an OBJ file that can be read, found one that cannot be opened"));
 }

@@ -21,6 +21,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -173,10 +174,10 @@ std::filesystem::path write_file(const std::filesystem::path& path, const std::s
     return path;
 }
 
-std::string load_error(const std::filesystem::path& path)
+std::string load_error(const std::filesystem::path& path, const rt::obj_limits& limits = {})
 {
     try {
-        rt::load_obj(path);
+        rt::load_obj(path, limits);
     } catch (const rt::error& e) {
         return e.what();
     }
@@ -1323,9 +1324,6 @@ TEST_CASE("malformed or missing OBJ and MTL files are one-line errors with file:
          "a normal index from 1 to 0"},
         {"a face of two corners", "v 0 0 0\nv 1 0 0\nf 1 2\n", "e.obj:3:1:", "a face of at least 3 corners, found 2"},
         {"a corner that is not an index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 three\n", "e.obj:4:7:", "'three'"},
-        {"missing material library", "mtllib nowhere.mtl\n", "e.obj:1:8:", "no such file"},
-        {"unknown material", "mtllib good.mtl\nusemtl dull\n", "e.obj:2:8:", "known: shiny"},
-        {"usemtl without a library", "usemtl shiny\n", "e.obj:1:8:", "no 'mtllib'"},
         {"malformed MTL line", "mtllib bad.mtl\n", "bad.mtl:2:6:", "expected a number for Kd g, found 'x'"},
         {"MTL statement before newmtl", "mtllib early.mtl\n", "early.mtl:1:1:", "'newmtl name' before 'Kd'"},
         {"binary bytes", "v 0 0 0\n\x01\x02\x03\n", "e.obj:2:1:", "a byte of value 1"},
@@ -1340,6 +1338,28 @@ TEST_CASE("malformed or missing OBJ and MTL files are one-line errors with file:
         CHECK(message.rfind(where, 0) == 0);
         CHECK(message.find(c.words) != std::string::npos);
         CHECK(message.find("expected") != std::string::npos);
+        CHECK(one_line(message));
+    }
+    // missing materials: a warning line and the default material, an error with strict (--strict)
+    const bad_case strict_cases[] = {
+        {"missing material library", "mtllib nowhere.mtl\n", "e.obj:1:8:", "no such file"},
+        {"unknown material", "mtllib good.mtl\nusemtl dull\n", "e.obj:2:8:", "known: shiny"},
+        {"usemtl without a library", "usemtl shiny\n", "e.obj:1:8:", "found usemtl 'shiny' without one"},
+    };
+    for (const bad_case& c : strict_cases) {
+        const std::string case_name = c.name;
+        CAPTURE(case_name);
+        const std::filesystem::path path = write_file(folder / "e.obj", c.text);
+        std::ostringstream warnings;
+        rt::obj_limits limits;
+        limits.warnings = &warnings;
+        CHECK(load_error(path, limits) == "no error");
+        CHECK(warnings.str().rfind((folder / c.location).string() + " warning: ", 0) == 0);
+        limits.strict = true;
+        const std::string message = load_error(path, limits);
+        CAPTURE(message);
+        CHECK(message.rfind((folder / c.location).string(), 0) == 0);
+        CHECK(message.find(c.words) != std::string::npos);
         CHECK(one_line(message));
     }
     const std::string missing = load_error(folder / "no-such.obj");

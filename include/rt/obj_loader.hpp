@@ -18,9 +18,26 @@
 // with a warning and does not say where). The positions are taken from this
 // check, parsed at the precision of rt::real (Debian's tinyobjloader is built
 // with float). tinyobjloader (Debian's libtinyobjloader, linked through rt::rt)
-// then reads the faces and triangulates polygons (a quad along its shorter
-// diagonal, larger polygons by ear clipping); the MTL files are parsed here and
-// handed to it by name, so usemtl picks the same materials in both.
+// then parses the faces, with its triangulation off (it split a concave quad
+// along its shorter diagonal even when that lies outside, and got 60 of 300
+// random simple 5- to 9-gons wrong: tests/library_triangulate.cpp); rt cuts
+// each face of 4 or more corners itself (triangulate.hpp). A face that is not
+// a simple polygon (edges crossing) is cut as a fan from its first corner with
+// a warning; repeated consecutive corners are merged (each counted as a
+// dropped degenerate triangle). The MTL files are parsed here and handed to
+// tinyobjloader by name, so usemtl picks the same materials in both.
+//
+// Text: a UTF-8 byte order mark is skipped, lines end at LF, CR LF or CR, and
+// a '\' at the end of a line continues it on the next (for_each_line);
+// tinyobjloader reads the text so normalised, so the lines it reads are the
+// lines checked here and every message keeps the file's line numbers.
+//
+// What loading can do without is a warning, one line per kind
+// "file:line:col: warning: expected ..., found ... (and N more like it); hint"
+// on obj_limits::warnings (std::cerr), and an error with obj_limits::strict
+// (the programs' --strict): a material library that does not exist (its
+// materials: the default material), usemtl without mtllib or of a name no
+// library declares (the default material), a face that is not simple.
 //
 // The check also keeps tinyobjloader (2.0.0rc10) away from what it cannot
 // read safely (docs/reliability.md, "Decisions"): every number, also in the
@@ -28,8 +45,8 @@
 // and at most 300 digits; a skin-weight joint id ("vw") must be from 0 to
 // 2^30; a tag ("t") may claim no more values than its line holds; a face has
 // at most obj_limits::max_face_corners corners; an MTL file is read once
-// however it is spelled. Lines end at LF, CR LF or a lone CR, as tinyobjloader
-// splits them.
+// however it is spelled. A coordinate must be within +-obj_limits::max_coordinate
+// (1e18), beyond which float arithmetic cannot trace a triangle.
 //
 // The mesh stores only what the file provides: normals (texture coordinates)
 // only when the faces refer to them. Zero-area triangles are dropped and
@@ -46,6 +63,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -61,6 +79,7 @@
 #include "error.hpp"
 #include "material.hpp"
 #include "mesh.hpp"
+#include "triangulate.hpp"
 
 namespace rt {
 
@@ -80,22 +99,53 @@ struct obj_limits {
     /// square of them (measured: 7 ms for 1000, 0.14 s for 4000, so a
     /// one-line face of a million corners would take hours)
     std::size_t max_face_corners = 1024;
+    /// The largest coordinate magnitude a vertex may have: the intersection
+    /// tests multiply coordinate differences (up to 2e18 here), and the
+    /// products, summed in twos for the edge functions and cross products
+    /// (8e36), must stay below float's largest value (3.4e38); a triangle
+    /// 1e19 across is silently missed by every ray (measured: stage04_triangle
+    /// hits a triangle 1e18 across, none 1e19 across).
+    double max_coordinate = 1e18;
+    /// What loading can do without (a missing material library, usemtl
+    /// without mtllib or of an unknown name, a face that is not a simple
+    /// polygon) is one warning line each, or with `strict` (--strict) an error.
+    bool strict = false;
+    /// Where the warnings go, one line each "file:line:col: warning: ...";
+    /// null: std::cerr.
+    std::ostream* warnings = nullptr;
 };
 
 namespace detail {
+
+/// Where a piece of a logical line starts: a line continued with '\\' at its
+/// end (OBJ and MTL files) is read as one line made of several pieces.
+struct line_piece {
+    std::size_t offset = 0; ///< in the logical line
+    int line = 0;           ///< in the file, from 1
+    int column = 1;         ///< of the piece's first character, from 1
+};
 
 /// One line of an OBJ or MTL file, read word by word; each reader names what
 /// it expects, for the error message.
 class obj_line {
 public:
-    obj_line(const std::string& file, int number, const char* first, const char* last)
-        : file_(file), number_(number), begin_(first), next_(first), end_(last)
+    obj_line(const std::string& file, const std::vector<line_piece>& pieces, const char* first, const char* last)
+        : file_(file), pieces_(pieces), begin_(first), next_(first), end_(last)
     {
         skip_blanks();
     }
 
     bool done() const { return next_ == end_ || *next_ == '#'; }
-    source_location here() const { return {file_, number_, int(next_ - begin_) + 1}; }
+    source_location here() const { return at(next_); }
+    /// The file's line and column of a character of this line.
+    source_location at(const char* position) const
+    {
+        const std::size_t offset = std::size_t(position - begin_);
+        std::size_t k = pieces_.size() - 1;
+        while (k > 0 && pieces_[k].offset > offset)
+            --k;
+        return {file_, pieces_[k].line, pieces_[k].column + int(offset - pieces_[k].offset)};
+    }
 
     std::string word()
     {
@@ -274,10 +324,10 @@ public:
     }
 
     /// One face corner "v", "v/vt", "v//vn" or "v/vt/vn": three indices as
-    /// written (0: absent) and the column each starts at.
+    /// written (0: absent) and where each starts in the line (for at()).
     struct corner {
         long index[3] = {0, 0, 0};
-        int column[3] = {0, 0, 0};
+        const char* start[3] = {nullptr, nullptr, nullptr};
     };
 
     corner face_corner()
@@ -286,30 +336,32 @@ public:
         const char* stop = next_;
         while (stop != end_ && *stop != ' ' && *stop != '\t')
             ++stop;
+        const std::string hint = "a corner is v, v/vt, v//vn or v/vt/vn";
         const char* p = next_;
         for (int part = 0; part < 3; ++part) {
-            c.column[part] = int(p - begin_) + 1;
+            c.start[part] = p;
             const char* slash = p;
             while (slash != stop && *slash != '/')
                 ++slash;
             if (slash != p) {
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
                 if (status != std::errc() || end != slash)
-                    throw parse_error({file_, number_, c.column[part]}, "a whole-number index",
-                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                    throw parse_error(at(p), "a whole-number index", "'" + printable(std::string(p, slash), 24) + "'", hint);
                 if (c.index[part] == 0)
-                    throw parse_error({file_, number_, c.column[part]}, "an index other than 0 (OBJ counts from 1)",
-                                      "'" + printable(std::string(p, slash), 24) + "'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                    throw parse_error(at(p), "an index other than 0 (OBJ counts from 1)",
+                                      "'" + printable(std::string(p, slash), 24) + "'", hint);
             } else if (part == 0) {
-                throw parse_error({file_, number_, c.column[0]}, "a vertex index", "'" + printable(std::string(p, stop), 24) + "'",
-                                  "a corner is v, v/vt, v//vn or v/vt/vn");
+                throw parse_error(at(p), "a vertex index", "'" + printable(std::string(p, stop), 24) + "'", hint);
+            } else if (slash == stop) {
+                // "1/" or "1//" or "1/2/": a '/' promises an index after it
+                throw parse_error(at(p), part == 1 ? "a texture coordinate index after '/'" : "a normal index after the second '/'",
+                                  "the end of the corner '" + printable(std::string(next_, stop), 24) + "'", hint);
             }
             if (slash == stop)
                 break;
             p = slash + 1;
             if (part == 2)
-                throw parse_error({file_, number_, int(slash - begin_) + 1}, "at most three indices in a corner",
-                                  "another '/'", "a corner is v, v/vt, v//vn or v/vt/vn");
+                throw parse_error(at(slash), "at most three indices in a corner", "another '/'", hint);
         }
         next_ = stop;
         skip_blanks();
@@ -335,40 +387,65 @@ private:
     }
 
     const std::string& file_;
-    int number_;
+    const std::vector<line_piece>& pieces_;
     const char* begin_;
     const char* next_;
     const char* end_;
 };
 
 /// Calls `each(line, number)` for every line of `text` (without the end of
-/// line), after checking that it is text. A line ends at LF, CR LF or a lone
-/// CR (classic Mac OS files), as tinyobjloader's safeGetline splits them, so
-/// that the line numbers here are the lines tinyobjloader reads.
+/// line; `number` is the file's line where it starts), after checking that it
+/// is text. Every file is read alike (OBJ, MTL, and scene files in
+/// scene_loader.hpp): a UTF-8 byte order mark at the start is skipped (the
+/// first column is the character after it); a line ends at LF, CR LF or a lone
+/// CR (classic Mac OS files); and, in OBJ and MTL files, a '\\' that ends a
+/// line joins the next line to it, read as a blank (the OBJ specification,
+/// "Object Files (.obj)": "long lines can be continued with a backslash").
+/// `normalised`, when given, receives the lines as read: each logical line
+/// once, ended by LF, for tinyobjloader, which then reads the same lines.
 template <class Each>
-void for_each_line(const std::string& text, const std::string& file, Each&& each)
+void for_each_line(const std::string& text, const std::string& file, Each&& each, std::string* normalised = nullptr)
 {
     const char* p = text.data();
     const char* const end = p + text.size();
+    if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+        p += 3;
     int number = 0;
+    std::string logical;
+    std::vector<line_piece> pieces;
     while (p != end) {
-        if (number == std::numeric_limits<int>::max())
-            throw error(source_location{file, number}, "expected at most " + std::to_string(number) +
-                                                           " lines, found more; split the file");
-        ++number;
-        const char* stop = p;
-        while (stop != end && *stop != '\n' && *stop != '\r') {
-            const unsigned char c = static_cast<unsigned char>(*stop);
-            if (c < 32 && c != '\t')
-                throw parse_error({file, number, int(stop - p) + 1}, "text",
-                                  "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
-            ++stop;
+        logical.clear();
+        pieces.clear();
+        const int first = number + 1;
+        for (;;) {
+            if (number == std::numeric_limits<int>::max())
+                throw error(source_location{file, number}, "expected at most " + std::to_string(number) +
+                                                               " lines, found more; split the file");
+            ++number;
+            const char* stop = p;
+            while (stop != end && *stop != '\n' && *stop != '\r') {
+                const unsigned char c = static_cast<unsigned char>(*stop);
+                if (c < 32 && c != '\t')
+                    throw parse_error({file, number, int(stop - p) + 1}, "text",
+                                      "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
+                ++stop;
+            }
+            pieces.push_back({logical.size(), number, 1});
+            logical.append(p, stop);
+            const bool continued = stop != p && stop[-1] == '\\' && stop != end;
+            if (stop != end && *stop == '\r' && stop + 1 != end && stop[1] == '\n')
+                ++stop; // CR LF is one line break
+            p = stop == end ? end : stop + 1;
+            if (!continued || p == end)
+                break;
+            logical.back() = ' '; // the backslash joins the lines like a blank
         }
-        obj_line line(file, number, p, stop);
-        each(line, number);
-        if (stop != end && *stop == '\r' && stop + 1 != end && stop[1] == '\n')
-            ++stop; // CR LF is one line break
-        p = stop == end ? end : stop + 1;
+        if (normalised) {
+            normalised->append(logical);
+            normalised->push_back('\n');
+        }
+        obj_line line(file, pieces, logical.data(), logical.data() + logical.size());
+        each(line, first);
     }
 }
 
@@ -392,7 +469,7 @@ inline std::string read_text(const std::filesystem::path& path, const std::strin
                             std::to_string(size) + "; raise obj_limits::max_bytes (load_options::obj for a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw error(at, "expected a readable " + what + " file, found one that cannot be opened: '" + name +
+        throw error(at, "expected " + what + " file that can be read, found one that cannot be opened: '" + name +
                             "'; check its permissions");
     std::string text;
     if (!ec)
@@ -516,6 +593,50 @@ public:
     explicit memory_buffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
 };
 
+/// The warnings of one OBJ file: in strict mode the first is thrown as an
+/// error; otherwise each kind is printed once, at its first place, with how
+/// many more there were, when the file has loaded (flush).
+class obj_warnings {
+public:
+    enum kind { missing_library, no_library, unknown_material, not_simple, kinds };
+
+    explicit obj_warnings(const obj_limits& limits) : limits_(limits) {}
+
+    void add(kind k, const source_location& where, const std::string& expected, const std::string& found,
+             const std::string& hint)
+    {
+        if (limits_.strict)
+            throw parse_error(where, expected, found, hint + " (a warning without --strict)");
+        entry& e = entries_[k];
+        if (e.count++ == 0) {
+            e.message = to_string(where) + ": warning: expected " + expected + ", found " + found;
+            e.hint = hint;
+            order_.push_back(k);
+        }
+    }
+
+    std::size_t count(kind k) const { return entries_[k].count; }
+
+    void flush() const
+    {
+        std::ostream& out = limits_.warnings ? *limits_.warnings : std::cerr;
+        for (const kind k : order_) {
+            const entry& e = entries_[k];
+            out << e.message << (e.count > 1 ? " (and " + std::to_string(e.count - 1) + " more like it)" : "") << "; "
+                << e.hint << '\n';
+        }
+    }
+
+private:
+    struct entry {
+        std::size_t count = 0;
+        std::string message, hint;
+    };
+    const obj_limits& limits_;
+    entry entries_[kinds];
+    std::vector<kind> order_;
+};
+
 /// What the line-by-line check of an OBJ file found.
 struct obj_check {
     std::vector<vec3> positions;
@@ -524,24 +645,38 @@ struct obj_check {
     // at the end because a face may refer to elements defined after it
     long largest[3] = {0, 0, 0};
     source_location largest_at[3];
+    /// the corners of each face, in file order (tinyobjloader counts them in
+    /// an unsigned char), and the line and column of each face of 4 or more
+    std::vector<std::uint32_t> face_corners;
+    std::vector<std::pair<int, int>> polygon_at; // line, column
 };
 
 inline obj_check check_obj(const std::string& text, const std::string& name, const std::filesystem::path& folder,
-                           const obj_limits& limits, std::vector<mtl_entry>& materials)
+                           const obj_limits& limits, std::vector<mtl_entry>& materials, obj_warnings& warnings,
+                           std::string& normalised)
 {
     obj_check out;
     std::vector<std::string> loaded_libraries;
-    bool any_library = false;
-    for_each_line(text, name, [&](obj_line& line, int number) {
+    bool any_library = false, missing_library = false;
+    for_each_line(text, name, [&](obj_line& line, int) {
         if (line.done())
             return;
         const source_location keyword_at = line.here();
         const std::string keyword = line.word();
         if (keyword == "v") {
             vec3 p;
-            p.x = line.number("the vertex x");
-            p.y = line.number("the vertex y");
-            p.z = line.number("the vertex z");
+            for (int axis = 0; axis < 3; ++axis) {
+                const source_location at = line.here();
+                p[axis] = line.number(std::string("the vertex ") + "xyz"[axis]);
+                if (std::fabs(double(p[axis])) > limits.max_coordinate) {
+                    std::ostringstream limit;
+                    limit << limits.max_coordinate;
+                    throw parse_error(at, std::string("a vertex ") + "xyz"[axis] + " within +-" + limit.str(),
+                                      "a larger one",
+                                      "float arithmetic cannot trace geometry this large; use smaller units "
+                                      "(obj_limits::max_coordinate)");
+                }
+            }
             while (!line.done())
                 line.number("a vertex's extra value (w or colour)");
             out.positions.push_back(p);
@@ -569,7 +704,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 for (int k = 0; k < 3; ++k) {
                     const long index = c.index[k];
                     if (index < 0 && long(defined[k]) + index < 0)
-                        throw parse_error({name, number, c.column[k]},
+                        throw parse_error(line.at(c.start[k]),
                                           std::string("a relative ") + kinds[k] + " index from -1 to -" +
                                               std::to_string(defined[k]),
                                           std::to_string(index),
@@ -577,7 +712,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                                               std::string(k == 0 ? "v" : k == 1 ? "vt" : "vn") + "' line");
                     if (index > out.largest[k]) {
                         out.largest[k] = index;
-                        out.largest_at[k] = {name, number, c.column[k]};
+                        out.largest_at[k] = line.at(c.start[k]);
                     }
                 }
             }
@@ -591,6 +726,9 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                                       "raise obj_limits::max_face_corners (load_options::obj for a scene)");
                 ++out.polygons;
                 out.triangles += std::size_t(corners - 2);
+                out.face_corners.push_back(std::uint32_t(corners));
+                if (corners > 3)
+                    out.polygon_at.emplace_back(keyword_at.line, keyword_at.column);
                 if (out.triangles > limits.max_triangles)
                     throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
                                       "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
@@ -633,6 +771,14 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 if (std::find(loaded_libraries.begin(), loaded_libraries.end(), key) != loaded_libraries.end())
                     continue;
                 loaded_libraries.push_back(key);
+                std::error_code missing;
+                if (!std::filesystem::exists(folder / file, missing) && !missing) {
+                    missing_library = true;
+                    warnings.add(obj_warnings::missing_library, at, "the material library '" + printable(file, 60) + "'",
+                                 "no such file beside the OBJ file",
+                                 "its materials are the default material; copy the MTL file beside the OBJ file");
+                    continue;
+                }
                 read_mtl(folder / file, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
@@ -642,25 +788,25 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             const std::string wanted = line.word();
             const bool declared = std::any_of(materials.begin(), materials.end(),
                                               [&](const mtl_entry& m) { return m.value.name == wanted; });
-            if (!declared) {
-                if (!any_library)
-                    throw parse_error(at, "a material declared in a material library", "'" + printable(wanted, 24) + "'",
-                                      "the file has no 'mtllib' line before this one; add one, or delete the usemtl lines");
-                std::vector<std::string> known;
-                for (const mtl_entry& m : materials)
-                    known.push_back(m.value.name);
+            if (!declared && !any_library) {
+                warnings.add(obj_warnings::no_library, at, "a material library ('mtllib') before 'usemtl'",
+                             "usemtl '" + printable(wanted, 24) + "' without one",
+                             "its faces get the default material; add 'mtllib file.mtl', or delete the usemtl lines");
+            } else if (!declared && !missing_library) { // (a missing library was reported already)
                 std::string list;
-                for (const std::string& k : known)
-                    list += (list.empty() ? "" : ", ") + k;
-                throw parse_error(at, "a material declared in the material library", "'" + printable(wanted, 24) + "'",
-                                  list.empty() ? "the library declares none" : "known: " + printable(list, 200));
+                for (const mtl_entry& m : materials)
+                    list += (list.empty() ? "" : ", ") + m.value.name;
+                warnings.add(obj_warnings::unknown_material, at, "a material declared in the material library",
+                             "'" + printable(wanted, 24) + "'",
+                             "its faces get the default material; " +
+                                 (list.empty() ? std::string("the library declares none") : "known: " + printable(list, 120)));
             }
         } else {
             // any other statement (curves, surfaces, ...) is not used by rt nor
             // read by tinyobjloader, but its numbers must fit a float too
             line.check_number_words(false);
         }
-    });
+    }, &normalised);
     const std::size_t counts[3] = {out.positions.size(), out.texcoords, out.normals};
     const char* kinds[3] = {"vertex", "texture coordinate", "normal"};
     const char* lines[3] = {"v", "vt", "vn"};
@@ -680,21 +826,28 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
 inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& limits = {})
 {
     const std::string name = path.string();
-    std::string text = detail::read_text(path, "an OBJ", limits.max_bytes, {});
+    const std::string text = detail::read_text(path, "an OBJ", limits.max_bytes, {});
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     std::vector<detail::mtl_entry> mtl;
-    detail::obj_check checked = detail::check_obj(text, name, folder, limits, mtl);
+    detail::obj_warnings warnings(limits);
+    // tinyobjloader reads the lines as the check read them: without a byte
+    // order mark, line breaks made LF, continued lines joined
+    std::string normalised;
+    detail::obj_check checked = detail::check_obj(text, name, folder, limits, mtl, warnings, normalised);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> groups;
     std::vector<tinyobj::material_t> tiny_materials;
     std::string warning, failure;
-    detail::memory_buffer buffer(text);
+    detail::memory_buffer buffer(normalised);
     std::istream stream(&buffer);
     detail::mtl_names_reader names(mtl);
-    if (!tinyobj::LoadObj(&attrib, &groups, &tiny_materials, &warning, &failure, &stream, &names, true, false)) {
-        // tinyobjloader's message may quote the file: printable, and short
-        throw error(source_location{name}, "expected a valid OBJ file, found: " + printable(failure, 200));
+    // triangulate = false: tinyobjloader only parses; rt triangulates (triangulate.hpp)
+    if (!tinyobj::LoadObj(&attrib, &groups, &tiny_materials, &warning, &failure, &stream, &names, false, false)) {
+        // not reached after the check above (which refuses all that tinyobjloader
+        // does); its own text has no place and may be wrong, so it is not shown
+        throw error(source_location{name}, "expected an OBJ file tinyobjloader can read, found one it refuses "
+                                           "though rt's check passed it; please report this file");
     }
 
     obj_result result;
@@ -718,46 +871,82 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     bool any_normal = false, any_texcoord = false, any_material = false;
     std::vector<index3> normal_indices, texcoord_indices;
     std::vector<int> face_materials;
+    std::size_t face_number = 0, polygon_number = 0;
+    std::vector<vec3> polygon;
+    std::vector<corner3> pieces;
     for (const tinyobj::shape_t& group : groups) {
         std::size_t offset = 0;
         for (std::size_t f = 0; f < group.mesh.num_face_vertices.size(); ++f) {
-            const std::size_t corners = group.mesh.num_face_vertices[f];
+            // the corner count from the check: tinyobjloader keeps it in an unsigned char
+            const std::size_t corners =
+                face_number < checked.face_corners.size() ? checked.face_corners[face_number++] : 0;
+            if (corners % 256 != group.mesh.num_face_vertices[f] || offset + corners > group.mesh.indices.size())
+                throw error(source_location{name}, "expected the faces rt's check counted, found others in "
+                                                   "tinyobjloader's result; please report this file");
             const std::size_t first = offset;
             offset += corners;
-            if (corners != 3) // triangulate = true gives triangles only; anything else is dropped
-                continue;
-            index3 position{}, normal{}, texcoord{};
-            bool valid = true;
-            for (std::size_t k = 0; k < 3; ++k) {
-                const tinyobj::index_t& index = group.mesh.indices[first + k];
-                valid = valid && index.vertex_index >= 0 && std::size_t(index.vertex_index) < vertex_count;
-                position[k] = std::uint32_t(index.vertex_index);
-                const bool has_normal = index.normal_index >= 0 && std::size_t(index.normal_index) < normal_count;
-                const bool has_texcoord =
-                    index.texcoord_index >= 0 && std::size_t(index.texcoord_index) < texcoord_count;
-                normal[k] = has_normal ? std::uint32_t(index.normal_index) : no_index;
-                texcoord[k] = has_texcoord ? std::uint32_t(index.texcoord_index) : no_index;
+            pieces.clear();
+            if (corners == 3) {
+                pieces.push_back({0, 1, 2});
+            } else {
+                polygon.clear();
+                bool inside = true;
+                for (std::size_t k = 0; k < corners; ++k) {
+                    const int index = group.mesh.indices[first + k].vertex_index;
+                    inside = inside && index >= 0 && std::size_t(index) < vertex_count;
+                    polygon.push_back(inside ? m.positions[std::size_t(index)] : vec3(0));
+                }
+                const source_location at =
+                    polygon_number < checked.polygon_at.size()
+                        ? source_location{name, checked.polygon_at[polygon_number].first,
+                                          checked.polygon_at[polygon_number].second}
+                        : source_location{name};
+                ++polygon_number;
+                if (!inside) // cannot happen after the check above; never index out of range
+                    continue;
+                polygon_triangulation cut = triangulate_polygon(polygon);
+                if (cut.problem == polygon_problem::not_simple)
+                    warnings.add(detail::obj_warnings::not_simple, at, "a simple polygon",
+                                 "a face of " + std::to_string(corners) + " corners with " + to_string(cut.problem),
+                                 "it is cut into a fan from its first corner; check the face in a modelling program");
+                m.dropped_degenerate += corners - 2 - cut.triangles.size(); // repeated corners merged
+                pieces = std::move(cut.triangles);
             }
-            if (!valid) // cannot happen after the check above; never index out of range
-                continue;
-            const vec3& a = m.positions[position[0]];
-            const vec3& b = m.positions[position[1]];
-            const vec3& c = m.positions[position[2]];
-            if (!(glm::length(glm::cross(b - a, c - a)) > 0)) {
-                ++m.dropped_degenerate;
-                continue;
+            for (const corner3& piece : pieces) {
+                index3 position{}, normal{}, texcoord{};
+                bool valid = true;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const tinyobj::index_t& index = group.mesh.indices[first + piece[k]];
+                    valid = valid && index.vertex_index >= 0 && std::size_t(index.vertex_index) < vertex_count;
+                    position[k] = std::uint32_t(index.vertex_index);
+                    const bool has_normal = index.normal_index >= 0 && std::size_t(index.normal_index) < normal_count;
+                    const bool has_texcoord =
+                        index.texcoord_index >= 0 && std::size_t(index.texcoord_index) < texcoord_count;
+                    normal[k] = has_normal ? std::uint32_t(index.normal_index) : no_index;
+                    texcoord[k] = has_texcoord ? std::uint32_t(index.texcoord_index) : no_index;
+                }
+                if (!valid) // cannot happen after the check above; never index out of range
+                    continue;
+                const vec3& a = m.positions[position[0]];
+                const vec3& b = m.positions[position[1]];
+                const vec3& c = m.positions[position[2]];
+                if (!(glm::length(glm::cross(b - a, c - a)) > 0)) {
+                    ++m.dropped_degenerate;
+                    continue;
+                }
+                m.triangles.push_back(position);
+                normal_indices.push_back(normal);
+                texcoord_indices.push_back(texcoord);
+                any_normal = any_normal || normal[0] != no_index || normal[1] != no_index || normal[2] != no_index;
+                any_texcoord =
+                    any_texcoord || texcoord[0] != no_index || texcoord[1] != no_index || texcoord[2] != no_index;
+                const int id = f < group.mesh.material_ids.size() ? group.mesh.material_ids[f] : -1;
+                face_materials.push_back(id >= 0 && std::size_t(id) < result.materials.size() ? id : -1);
+                any_material = any_material || face_materials.back() >= 0;
             }
-            m.triangles.push_back(position);
-            normal_indices.push_back(normal);
-            texcoord_indices.push_back(texcoord);
-            any_normal = any_normal || normal[0] != no_index || normal[1] != no_index || normal[2] != no_index;
-            any_texcoord =
-                any_texcoord || texcoord[0] != no_index || texcoord[1] != no_index || texcoord[2] != no_index;
-            const int id = f < group.mesh.material_ids.size() ? group.mesh.material_ids[f] : -1;
-            face_materials.push_back(id >= 0 && std::size_t(id) < result.materials.size() ? id : -1);
-            any_material = any_material || face_materials.back() >= 0;
         }
     }
+    warnings.flush();
     if (any_normal) {
         m.normals.reserve(normal_count);
         for (std::size_t i = 0; i < normal_count; ++i)
@@ -774,6 +963,22 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     if (any_material)
         m.face_materials = std::move(face_materials);
     return result;
+}
+
+/// Requires that a loaded OBJ file has a triangle to trace: the one message of
+/// every program that renders a bare OBJ file (a file of comments only, or of
+/// zero-area faces only, would give a black image).
+inline void require_triangles(const obj_result& loaded)
+{
+    const mesh& m = loaded.geometry;
+    if (!m.triangles.empty())
+        return;
+    throw error(source_location{m.source},
+                "expected a model with at least one triangle, found " +
+                    (m.dropped_degenerate > 0
+                         ? "only " + std::to_string(m.dropped_degenerate) + " degenerate (zero-area) triangle(s)"
+                         : std::string("no faces")) +
+                    "; check the OBJ file");
 }
 
 /// One line describing a loaded OBJ file, for a program to print.

@@ -142,9 +142,10 @@ inline std::optional<vec3> inside_view(const mesh& m, const vec3& p)
 /// camera frames the model's bounding sphere from the front and a little
 /// above; a model that encloses the centre of its bounds (a room, a building:
 /// inside_view) is seen from that centre instead, along its longest view.
-inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny)
+inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny, const obj_limits& limits = {})
 {
-    obj_result obj = load_obj(path);
+    obj_result obj = load_obj(path, limits);
+    require_triangles(obj);
     scene s;
     s.width = nx;
     s.height = ny;
@@ -183,13 +184,13 @@ inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny)
 /// the scene's own (an OBJ: `width` x `height`, default 640 x 480); the caller
 /// applies --width/--height to the render options.
 inline scene load_input(const std::filesystem::path& path, std::optional<int> width = std::nullopt,
-                        std::optional<int> height = std::nullopt)
+                        std::optional<int> height = std::nullopt, const load_options& options = {})
 {
     if (has_obj_extension(path)) {
         const scene defaults;
-        return scene_from_obj(path, width.value_or(defaults.width), height.value_or(defaults.height));
+        return scene_from_obj(path, width.value_or(defaults.width), height.value_or(defaults.height), options.obj);
     }
-    return load_scene(path);
+    return load_scene(path, options);
 }
 
 /// The sampler used when none is named: one ray through each pixel centre for

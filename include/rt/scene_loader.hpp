@@ -682,6 +682,8 @@ inline scene load_scene_stream(std::istream& in, const std::string& name, const 
         if (number == std::numeric_limits<int>::max())
             throw error(source_location{name, number}, "expected at most " + std::to_string(number) +
                                                            " lines, found more; split the scene");
+        if (number == 0 && text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+            text.erase(0, 3); // a UTF-8 byte order mark, skipped as in OBJ and MTL files (obj_loader.hpp)
         reader.read_line(text, ++number);
     }
     if (in.bad())

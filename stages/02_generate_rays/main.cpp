@@ -21,6 +21,7 @@ const char* usage =
     "usage: stage02_generate_rays SCENE [-o OUTPUT] [--projection perspective|orthographic]\n"
     "Writes an image whose pixels show the direction of each pixel's ray.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default rays.png)\n"
+    "  --strict        warnings of the OBJ files (missing materials) are errors\n"
     "  --projection P  override the scene camera's projection\n";
 
 } // namespace
@@ -30,6 +31,7 @@ int main(int argc, char** argv)
     return stage::run("stage02_generate_rays", [&] {
         stage::arguments args(argc, argv);
         std::string scene_path, output = "rays.png", projection;
+        bool strict = false;
         while (!args.done()) {
             const std::string arg = args.take();
             if (arg == "--help" || arg == "-h") {
@@ -37,6 +39,8 @@ int main(int argc, char** argv)
                 return 0;
             } else if (arg == "-o") {
                 output = args.value_of("-o");
+            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                strict = true;
             } else if (arg == "--projection") {
                 projection = args.value_of("--projection");
                 if (projection != "perspective" && projection != "orthographic")
@@ -54,7 +58,7 @@ int main(int argc, char** argv)
         rt::check_writable(output); // fail before the work, not after it
         rt::check_image_path(output);
 
-        rt::scene s = stage::load_scene(scene_path);
+        rt::scene s = stage::load_scene(scene_path, strict);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
             s.cam.kind = rt::projection::orthographic;
             s.cam.fov_degrees.reset();

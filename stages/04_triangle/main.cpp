@@ -48,6 +48,7 @@ const char* usage =
     "  --compare       render with both and write where they differ: red where only the\n"
     "                  library hits (a ray that leaked through your triangles), blue where\n"
     "                  only yours hits, yellow where both hit different shapes or depths\n"
+    "  --strict        warnings of the OBJ files (missing materials) are errors\n"
     "  --pixel I J      tell the story of one pixel (your list): its camera ray and hit;\n"
     "                   I is the column from the left, J the row from the top\n"
     "  --pixel-json I J the same as JSON (infinities are null)\n";
@@ -154,7 +155,7 @@ int main(int argc, char** argv)
         stage::arguments args(argc, argv);
         std::string input, output = "triangle.png", mode = "normals", accel = "list";
         int width = 0, height = 0;
-        bool compare = false;
+        bool compare = false, strict = false;
         stage::pixel_request pixel;
         while (!args.done()) {
             const std::string arg = args.take();
@@ -178,13 +179,15 @@ int main(int argc, char** argv)
                 accel = args.value_of("--accel");
                 if (accel != "list")
                     rt::parse_accelerator_kind(accel); // an rt::error naming the choices
+            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                strict = true;
             } else if (arg == "--compare") {
                 compare = true;
             } else if (arg == "--pixel" || arg == "--pixel-json") {
                 stage::read_pixel(args, arg, pixel);
             } else if (!arg.empty() && arg[0] == '-') {
                 throw rt::error("expected an option (-o, --mode, --size, --accel, --compare, --pixel, --pixel-json, "
-                                "--help), found '" + arg + "'; see --help");
+                                "--strict, --help), found '" + arg + "'; see --help");
             } else if (input.empty()) {
                 input = arg;
             } else {
@@ -197,7 +200,8 @@ int main(int argc, char** argv)
             rt::check_writable(output); // fail before the work, not after it
 
         const auto load_start = clock_type::now();
-        rt::scene s = width > 0 ? stage::load_input(input, width, height) : stage::load_input(input);
+        rt::scene s = width > 0 ? stage::load_input(input, width, height, strict)
+                                : stage::load_input(input, std::nullopt, std::nullopt, strict);
         if (width == 0) {
             width = s.width;
             height = s.height;

@@ -113,6 +113,7 @@ inline constexpr const char* render_options_usage =
     "  --exposure STOPS      scale the image by 2^STOPS before the tone map (default 0)\n"
     "  --gamma G             store with a plain gamma G instead of the sRGB curve\n"
     "  --seed N              seed of every random choice, 0..2^64-1 (default 0)\n"
+    "  --strict              warnings of the OBJ files (missing materials) are errors\n"
     "  --aov A               depth | normal | position | rays: a debug image instead of\n"
     "                        the shaded one, stored without exposure, tone map or gamma\n";
 
@@ -128,6 +129,7 @@ struct render_settings {
     std::uint64_t seed = 0;
     rt::aov_kind aov = rt::aov_kind::none;
     std::optional<rt::camera> camera;
+    bool strict = false; ///< --strict: warnings of OBJ files are errors
 };
 
 /// If `arg` (just taken from `args`) is a shared option, reads its value into
@@ -164,6 +166,8 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
         s.encoding.gamma = float(parse_number(arg, value(), 0, 10, true));
     } else if (arg == "--seed") {
         s.seed = parse_seed(value());
+    } else if (arg == "--strict") {
+        s.strict = true;
     } else if (arg == "--aov") {
         s.aov = parse_name<rt::aov_kind>(arg, value(), rt::aov_from_name, "depth, normal, position, rays");
     } else {
@@ -175,7 +179,9 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
 /// The scene or OBJ of the settings, with --camera applied.
 inline rt::scene load_render_input(const render_settings& s)
 {
-    rt::scene scene = rt::load_input(s.input, s.width, s.height);
+    rt::load_options options;
+    options.obj.strict = s.strict;
+    rt::scene scene = rt::load_input(s.input, s.width, s.height, options);
     if (s.camera)
         scene.cam = *s.camera;
     if (s.max_depth)

@@ -34,12 +34,14 @@ class accelerator;
 namespace stage {
 
 /// rt::load_scene: the scene file at `path`, or an rt::error naming file:line:col.
-rt::scene load_scene(const std::string& path);
+/// `strict`: the OBJ files' warnings (missing materials, polygons that are not
+/// simple) are errors (--strict).
+rt::scene load_scene(const std::string& path, bool strict = false);
 
 /// rt::load_input: a scene file, or a bare OBJ model framed by its bounds
 /// (`width` x `height` pixels, default 640 x 480).
 rt::scene load_input(const std::string& path, std::optional<int> width = std::nullopt,
-                     std::optional<int> height = std::nullopt);
+                     std::optional<int> height = std::nullopt, bool strict = false);
 
 /// rt::save_image: `img` to `path` (.png, .ppm or .pfm), written atomically;
 /// 8-bit formats clamp and apply 1/gamma (1: bytes proportional to the values).

@@ -5,9 +5,11 @@
 
 namespace stage {
 
-rt::scene load_input(const std::string& path, std::optional<int> width, std::optional<int> height)
+rt::scene load_input(const std::string& path, std::optional<int> width, std::optional<int> height, bool strict)
 {
-    return rt::load_input(path, width, height);
+    rt::load_options options;
+    options.obj.strict = strict;
+    return rt::load_input(path, width, height, options);
 }
 
 } // namespace stage

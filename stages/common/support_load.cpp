@@ -5,6 +5,11 @@
 
 namespace stage {
 
-rt::scene load_scene(const std::string& path) { return rt::load_scene(path); }
+rt::scene load_scene(const std::string& path, bool strict)
+{
+    rt::load_options options;
+    options.obj.strict = strict;
+    return rt::load_scene(path, options);
+}
 
 } // namespace stage
