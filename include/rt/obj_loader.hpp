@@ -524,6 +524,7 @@ struct obj_check {
     // at the end because a face may refer to elements defined after it
     long largest[3] = {0, 0, 0};
     source_location largest_at[3];
+    std::vector<std::filesystem::path> libraries; ///< the MTL files opened, for mesh::read_from
 };
 
 inline obj_check check_obj(const std::string& text, const std::string& name, const std::filesystem::path& folder,
@@ -633,6 +634,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 if (std::find(loaded_libraries.begin(), loaded_libraries.end(), key) != loaded_libraries.end())
                     continue;
                 loaded_libraries.push_back(key);
+                out.libraries.push_back(folder / file);
                 read_mtl(folder / file, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
@@ -701,6 +703,8 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     result.polygons = checked.polygons;
     mesh& m = result.geometry;
     m.source = name;
+    m.read_from.push_back(path);
+    m.read_from.insert(m.read_from.end(), checked.libraries.begin(), checked.libraries.end());
     m.positions = std::move(checked.positions);
     for (const detail::mtl_entry& entry : mtl) {
         material mat = entry.value;

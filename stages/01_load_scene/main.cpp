@@ -39,6 +39,7 @@ int main(int argc, char** argv)
         if (!args.done())
             throw rt::error("expected one scene file, found also '" + args.peek() + "'; usage: stage01_load_scene SCENE");
 
+        rt::check_readable(path, "a scene file"); // the reason (errno) when it cannot be read
         const rt::scene s = rt::load_scene(path);
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
         std::printf("scene %s\n", path.c_str());

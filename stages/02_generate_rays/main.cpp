@@ -49,8 +49,9 @@ int main(int argc, char** argv)
         }
         if (scene_path.empty())
             throw rt::error("expected a scene file, found none; see --help");
-        rt::check_writable(output); // fail before the work, not after it
-        rt::check_image_path(output);
+        rt::check_image_path(output); // every option before any work
+        rt::check_writable(output);
+        stage::check_input_and_outputs(scene_path, "a scene file", {output});
 
         rt::scene s = rt::load_scene(scene_path);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
@@ -61,7 +62,7 @@ int main(int argc, char** argv)
             s.cam.kind = rt::projection::perspective;
             s.cam.plane.reset();
         }
-        rt::check_not_input(output, rt::input_files(scene_path, s)); // nothing is written yet
+        rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
         rt::save_image(output, rt::render_ray_directions(gen), 1.0f);
         std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)\n";

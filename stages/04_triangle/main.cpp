@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <ctime>
 #include <iomanip>
 #include <iostream>
@@ -328,9 +329,11 @@ int main(int argc, char** argv)
         }
         if (input.empty())
             throw rt::error("expected an OBJ or scene file, found none; see --help");
-        rt::check_writable(output); // fail before the work, not after it
+        rt::check_image_output(output); // every option, the output format included, before any work
+        stage::check_input_and_outputs(input, ends_with(input, ".scene") ? "a scene file" : "an OBJ file", {output});
 
         rt::scene world_scene;
+        std::ostringstream load_summary; // printed once the outputs are checked against every file read
         const auto load_start = clock_type::now();
         if (ends_with(input, ".scene")) {
             world_scene = rt::load_scene(input);
@@ -351,13 +354,13 @@ int main(int argc, char** argv)
                     dropped += m.dropped_degenerate;
                 }
             }
-            std::cout << input << ": " << spheres << " spheres, " << triangles << " triangles, " << meshes
+            load_summary << input << ": " << spheres << " spheres, " << triangles << " triangles, " << meshes
                       << " meshes of " << mesh_triangles << " triangles (" << dropped
                       << " degenerate triangles dropped) (load " << std::setprecision(3) << seconds_since(load_start)
                       << " s)\n";
         } else {
             rt::obj_result loaded = rt::load_obj(input);
-            std::cout << rt::summary(loaded) << " (load " << std::setprecision(3) << seconds_since(load_start)
+            load_summary << rt::summary(loaded) << " (load " << std::setprecision(3) << seconds_since(load_start)
                       << " s)\n";
             world_scene.materials = std::move(loaded.materials);
             world_scene.shapes.emplace_back(std::move(loaded.geometry));
@@ -368,6 +371,11 @@ int main(int argc, char** argv)
             world_scene.cam = frame_box(rt::scene_bounds(world_scene), view, width, height);
         }
 
+        rt::check_not_input(output, rt::files_read(input, world_scene)); // its OBJ and MTL files too
+        std::cout << load_summary.str();
+        // the depth (4 bytes a pixel), the normals and the picture (12 each), and the image stored
+        rt::check_memory_for(std::uint64_t(width) * std::uint64_t(height) * (4 + 12 + 12 + 12),
+                             "a " + std::to_string(width) + "x" + std::to_string(height) + " image");
         const auto build_start = clock_type::now();
         const rt::accelerator world(world_scene, kind);
         const double build_seconds = seconds_since(build_start);

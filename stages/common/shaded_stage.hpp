@@ -3,10 +3,12 @@
 // one centred sample per pixel with the stage's colour function, and store it.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <iostream>
 #include <string>
 
+#include <rt/atomic_file.hpp>
 #include <rt/camera.hpp>
 #include <rt/image_io.hpp>
 #include <rt/intersect.hpp>
@@ -26,10 +28,15 @@ using color_function = std::function<rt::color(const rt::scene&, const rt::accel
 inline void render_shaded(const std::string& program, const std::string& scene_path, const std::string& output,
                           const color_function& shade, const std::function<void(rt::scene&)>& adjust = {})
 {
-    rt::check_writable(output); // fail before the work, not after it
+    rt::check_image_output(output); // every option, the output format included, before any work
+    check_input_and_outputs(scene_path, "a scene file", {output});
     rt::scene s = rt::load_scene(scene_path);
+    rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too
     if (adjust)
         adjust(s);
+    // the image (three floats a pixel) and its bytes
+    rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (12 + 3),
+                         "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
     const rt::accelerator accel(s);
     rt::render_options options;
     options.width = s.width;
