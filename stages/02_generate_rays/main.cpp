@@ -49,8 +49,8 @@ int main(int argc, char** argv)
         }
         if (scene_path.empty())
             throw rt::error("expected a scene file, found none; see --help");
-        rt::check_image_path(output); // every option before any work
-        rt::check_writable(output);
+        rt::check_writable(output); // fail before the work, not after it
+        rt::check_image_path(output);
         stage::check_input_and_outputs(scene_path, "a scene file", {output});
 
         rt::scene s = rt::load_scene(scene_path);
