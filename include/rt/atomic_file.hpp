@@ -2,69 +2,378 @@
 //
 // Every output rt writes goes to a temporary file in the same folder first and
 // is renamed over the target only when it is complete. A rename within one
-// folder is atomic on POSIX file systems, so a reader sees either the old file
-// or the new one, and a failure (a full disk, a crash, an exception while
-// encoding) leaves the previous file untouched.
+// folder is atomic on POSIX file systems (rename(2), IEEE Std 1003.1-2017), so a
+// reader sees either the old file or the new one, and a failure (a full disk, a
+// crash, an exception while encoding) leaves the previous file untouched.
+//
+// What is promised (docs/reliability.md):
+//  - no temporary file is left behind: on an exception, on a write error, and
+//    when the program is stopped by SIGINT, SIGTERM or SIGHUP (a handler removes
+//    the temporary files being written, then dies of the signal as it would
+//    have); SIGXFSZ (the file size limit, ulimit -f) is ignored so that the
+//    write fails with EFBIG and is reported as an error;
+//  - write_all_atomically writes several files all or none: every temporary
+//    file is complete before the first rename.
+// The handlers are installed by each write, and only over the default action:
+// a program that handles or ignores these signals itself keeps its way.
 #pragma once
 
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <functional>
+#include <memory>
+#include <ostream>
 #include <random>
+#include <streambuf>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "error.hpp"
+#include "os_error.hpp"
 
 namespace rt {
 
 namespace detail {
 
-/// A temporary name beside `target` that no file has yet: a random number from
-/// std::random_device, so two threads or processes never pick the same one.
-inline std::filesystem::path temporary_sibling(const std::filesystem::path& target)
+// --- the registry of temporary files being written ---------------------------
+//
+// This is global mutable state, the one kind DEVELOPERS.md allows: a signal
+// handler receives nothing but the signal number, so the paths it must remove
+// can only be found through an object of static storage duration. The handler
+// may only make async-signal-safe calls (POSIX 2017, sec. 2.4.3: unlink, raise,
+// sigaction; lock-free atomics), so the registry is a fixed array of slots and
+// no allocation, lock or exception touches it while a signal may arrive.
+
+struct temporary_registry {
+    static constexpr int slots = 64;              ///< files being written at once, in all threads
+    static constexpr std::size_t path_bytes = 4200; ///< PATH_MAX (4096) and a margin
+    enum : int { free_slot = 0, claimed = 1, registered = 2, removing = 3 };
+    std::atomic<int> state[slots];
+    char paths[slots][path_bytes];
+};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+
+/// The registry (zero-initialised: every slot free before any code runs).
+inline temporary_registry temporary_files;
+
+/// The signal handler: removes every registered temporary file, then restores
+/// the default action and raises the signal again, so the program ends as the
+/// signal would have ended it (the shell sees "killed by SIGINT", status 130).
+inline void remove_temporaries_and_die(int signal_number)
 {
-    std::random_device entropy;
-    for (;;) {
-        std::filesystem::path candidate = target;
-        candidate += ".tmp-" + std::to_string(entropy()) + std::to_string(entropy());
-        std::error_code ec;
-        if (!std::filesystem::exists(candidate, ec))
-            return candidate;
+    for (int k = 0; k < temporary_registry::slots; ++k) {
+        int expected = temporary_registry::registered;
+        if (temporary_files.state[k].compare_exchange_strong(expected, temporary_registry::removing))
+            ::unlink(temporary_files.paths[k]);
+    }
+    struct sigaction default_action {};
+    default_action.sa_handler = SIG_DFL;
+    sigemptyset(&default_action.sa_mask);
+    ::sigaction(signal_number, &default_action, nullptr);
+    ::raise(signal_number); // blocked until the handler returns, then the default action
+}
+
+/// Installs the handler for SIGINT, SIGTERM and SIGHUP where their action is
+/// the default one, and ignores SIGXFSZ where it is the default (so a write past
+/// the file size limit fails with EFBIG instead of killing the program with a
+/// partial file). Called before every write: a few system calls, and a signal
+/// whose action the program has set meanwhile (to handle or ignore it) is left so.
+inline void install_cleanup_handlers()
+{
+    for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction current {};
+        if (::sigaction(signal_number, nullptr, &current) != 0 || (current.sa_flags & SA_SIGINFO) ||
+            current.sa_handler != SIG_DFL)
+            continue; // ours already, or ignored or handled by the program: leave it so
+        struct sigaction cleanup {};
+        cleanup.sa_handler = remove_temporaries_and_die;
+        sigemptyset(&cleanup.sa_mask);
+        sigaddset(&cleanup.sa_mask, SIGINT); // one cleanup at a time
+        sigaddset(&cleanup.sa_mask, SIGTERM);
+        sigaddset(&cleanup.sa_mask, SIGHUP);
+        ::sigaction(signal_number, &cleanup, nullptr);
+    }
+    struct sigaction current {};
+    if (::sigaction(SIGXFSZ, nullptr, &current) == 0 && !(current.sa_flags & SA_SIGINFO) &&
+        current.sa_handler == SIG_DFL) {
+        struct sigaction ignore {};
+        ignore.sa_handler = SIG_IGN;
+        sigemptyset(&ignore.sa_mask);
+        ::sigaction(SIGXFSZ, &ignore, nullptr);
     }
 }
+
+/// A slot of the registry holding `path` while it exists; the destructor
+/// removes the file unless release() was called (after its rename).
+class registered_temporary {
+public:
+    explicit registered_temporary(const std::filesystem::path& path) : path_(path)
+    {
+        const std::string text = path.string();
+        if (text.size() >= temporary_registry::path_bytes)
+            throw error(source_location{text}, "expected a path of at most " +
+                                                   std::to_string(temporary_registry::path_bytes - 1) +
+                                                   " bytes, found " + std::to_string(text.size()) + "; shorten it");
+        for (int k = 0; k < temporary_registry::slots; ++k) {
+            int expected = temporary_registry::free_slot;
+            if (temporary_files.state[k].compare_exchange_strong(expected, temporary_registry::claimed)) {
+                std::memcpy(temporary_files.paths[k], text.c_str(), text.size() + 1);
+                temporary_files.state[k].store(temporary_registry::registered);
+                slot_ = k;
+                return;
+            }
+        }
+        throw error(source_location{text}, "expected at most " + std::to_string(temporary_registry::slots) +
+                                               " files written at once, found more; write fewer at a time");
+    }
+    registered_temporary(const registered_temporary&) = delete;
+    registered_temporary& operator=(const registered_temporary&) = delete;
+    ~registered_temporary()
+    {
+        if (created_ && !released_)
+            ::unlink(path_.c_str());
+        forget();
+    }
+
+    const std::filesystem::path& path() const { return path_; }
+
+    /// The file now exists and is ours (created with O_EXCL): remove it at the end.
+    void created() { created_ = true; }
+
+    /// The file was renamed: it is no longer a temporary file.
+    void release()
+    {
+        released_ = true;
+        forget();
+    }
+
+private:
+    void forget()
+    {
+        if (slot_ < 0)
+            return;
+        int expected = temporary_registry::registered;
+        // a failed exchange means a signal handler is removing it: the process is ending
+        temporary_files.state[slot_].compare_exchange_strong(expected, temporary_registry::free_slot);
+        slot_ = -1;
+    }
+
+    std::filesystem::path path_;
+    int slot_ = -1;
+    bool created_ = false;
+    bool released_ = false;
+};
+
+/// A temporary name beside `target`: "<name>.tmp-<16 hex digits>", random
+/// (std::random_device), so two threads or processes never pick the same one.
+/// A name too long for the folder with the suffix is cut to fit.
+inline std::filesystem::path temporary_sibling(const std::filesystem::path& target)
+{
+    static constexpr std::size_t suffix_bytes = 21; // ".tmp-" and 16 hex digits
+    std::random_device entropy;
+    const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
+    std::string name = target.filename().string();
+    const std::size_t longest = name_max(folder);
+    if (name.size() + suffix_bytes > longest)
+        name.resize(longest > suffix_bytes ? longest - suffix_bytes : 1);
+    const std::uint64_t high = entropy(), low = entropy();
+    const std::uint64_t number = (high << 32) ^ low;
+    static const char digits[] = "0123456789abcdef";
+    std::string suffix = ".tmp-";
+    for (int shift = 60; shift >= 0; shift -= 4)
+        suffix += digits[(number >> shift) & 0xfu];
+    return target.has_parent_path() ? target.parent_path() / (name + suffix) : std::filesystem::path(name + suffix);
+}
+
+/// Creates `path` (it must not exist) for writing; -1 and errno on failure.
+inline int create_new_file(const std::filesystem::path& path)
+{
+    int fd;
+    do
+        fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    while (fd < 0 && errno == EINTR);
+    return fd;
+}
+
+/// A std::streambuf writing to a POSIX file descriptor that keeps the errno of
+/// the first failed write, so the message can say why (ENOSPC, EFBIG, EIO).
+class descriptor_buffer : public std::streambuf {
+public:
+    explicit descriptor_buffer(int fd) : fd_(fd), buffer_(std::size_t(1) << 16)
+    {
+        setp(buffer_.data(), buffer_.data() + buffer_.size());
+    }
+    int failure() const { return failure_; }
+
+protected:
+    int_type overflow(int_type c) override
+    {
+        if (!drain())
+            return traits_type::eof();
+        if (!traits_type::eq_int_type(c, traits_type::eof())) {
+            *pptr() = traits_type::to_char_type(c);
+            pbump(1);
+        }
+        return traits_type::not_eof(c);
+    }
+    int sync() override { return drain() ? 0 : -1; }
+    std::streamsize xsputn(const char* data, std::streamsize count) override
+    {
+        if (count < epptr() - pptr()) {
+            std::memcpy(pptr(), data, std::size_t(count));
+            pbump(int(count));
+            return count;
+        }
+        if (!drain() || !write_all(data, std::size_t(count)))
+            return 0;
+        return count;
+    }
+
+private:
+    bool drain()
+    {
+        const std::size_t pending = std::size_t(pptr() - pbase());
+        const bool ok = write_all(pbase(), pending);
+        setp(buffer_.data(), buffer_.data() + buffer_.size());
+        return ok;
+    }
+    bool write_all(const char* data, std::size_t count)
+    {
+        if (failure_ != 0)
+            return false;
+        while (count > 0) {
+            const ssize_t written = ::write(fd_, data, count);
+            if (written < 0) {
+                if (errno == EINTR)
+                    continue;
+                failure_ = errno;
+                return false;
+            }
+            data += written;
+            count -= std::size_t(written);
+        }
+        return true;
+    }
+
+    int fd_;
+    std::vector<char> buffer_;
+    int failure_ = 0;
+};
+
+/// One output being written: its target and its registered temporary file.
+class pending_file {
+public:
+    explicit pending_file(const std::filesystem::path& target)
+        : target_(target), temporary_(temporary_sibling(target))
+    {
+    }
+
+    /// Creates the temporary file and fills it with `write`; throws rt::error
+    /// with the reason (errno) when a byte could not be written.
+    void fill(const std::function<void(std::ostream&)>& write)
+    {
+        const int fd = create_new_file(temporary_.path());
+        if (fd < 0) {
+            const int code = errno;
+            throw error(source_location{target_.string()},
+                        "expected to create a temporary file beside it, found that impossible (" + reason_of(code) +
+                            "); choose another output path");
+        }
+        temporary_.created();
+        int failure = 0;
+        try {
+            descriptor_buffer buffer(fd);
+            std::ostream out(&buffer);
+            write(out);
+            out.flush();
+            failure = buffer.failure();
+            if (failure == 0 && !out)
+                failure = EIO;
+        } catch (...) {
+            ::close(fd);
+            throw;
+        }
+        if (::close(fd) != 0 && failure == 0)
+            failure = errno; // NFS reports a full disk at close
+        if (failure != 0)
+            throw error(source_location{target_.string()},
+                        "expected to write the file, found a write error (" + reason_of(failure) +
+                            "); nothing was written, the previous file, if any, is unchanged");
+    }
+
+    /// Renames the temporary file over the target; throws rt::error on failure.
+    void commit()
+    {
+        if (::rename(temporary_.path().c_str(), target_.c_str()) != 0) {
+            const int code = errno;
+            throw error(source_location{target_.string()},
+                        "expected to replace the file, found that impossible (" + reason_of(code) + ")");
+        }
+        temporary_.release();
+    }
+
+    const std::filesystem::path& target() const { return target_; }
+
+private:
+    std::filesystem::path target_;
+    registered_temporary temporary_;
+};
 
 } // namespace detail
 
-/// Throws rt::error unless a file can be created at `target` (its folder exists,
-/// is a folder and is writable, and `target` is not a folder). Call it before a
-/// long render, so a bad output path fails at once instead of at the end.
+/// Throws rt::error, with the reason, unless a file can be created at `target`:
+/// its name fits the file system, its folder exists, is a folder and is
+/// writable, and `target` is not a folder. Call it before a long render, so a
+/// bad output path fails at once instead of at the end.
 inline void check_writable(const std::filesystem::path& target)
 {
-    std::error_code ec;
-    if (std::filesystem::is_directory(target, ec))
-        throw error(source_location{target.string()},
-                    "expected an output file, found a folder; give a file name such as out.png");
+    const source_location at{target.string()};
     const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
-    if (!std::filesystem::is_directory(folder, ec))
-        throw error(source_location{target.string()},
-                    "expected an existing output folder, found none at '" + folder.string() +
-                        "'; create it first");
-    const std::filesystem::path probe = detail::temporary_sibling(target);
-    {
-        std::ofstream out(probe, std::ios::binary);
-        if (!out)
-            throw error(source_location{target.string()},
-                        "expected a writable output folder, found '" + folder.string() +
-                            "' not writable; choose another output path");
+    const std::string shown_folder = "'" + shown_path(folder.string()) + "'";
+    struct stat status {};
+    if (::stat(folder.c_str(), &status) != 0) {
+        const int code = errno;
+        if (code == ENOENT)
+            throw error(at, "expected an existing output folder, found none at " + shown_folder + "; create it first");
+        throw error(at, "expected an existing output folder, found " + shown_folder + " cannot be reached (" +
+                            reason_of(code) + "); choose another output path");
     }
-    std::filesystem::remove(probe, ec);
+    if (!S_ISDIR(status.st_mode))
+        throw error(at, "expected an output folder, found " + shown_folder + " is a file; choose another output path");
+    const std::size_t name_bytes = target.filename().string().size();
+    const std::size_t longest = name_max(folder);
+    if (name_bytes > longest)
+        throw error(at, "expected a file name of at most " + std::to_string(longest) + " bytes, found one of " +
+                            std::to_string(name_bytes) + "; choose a shorter name");
+    if (::stat(target.c_str(), &status) == 0 && S_ISDIR(status.st_mode))
+        throw error(at, "expected an output file, found a folder; give a file name such as out.png");
+    detail::registered_temporary probe(detail::temporary_sibling(target));
+    const int fd = detail::create_new_file(probe.path());
+    if (fd < 0) {
+        const int code = errno;
+        throw error(at, "expected a writable output folder, found " + shown_folder + " not writable (" +
+                            reason_of(code) + "); choose another output path");
+    }
+    probe.created();
+    ::close(fd);
 }
 
 /// Throws rt::error when `target` is the same file as one of `inputs`, however
-/// either path is spelled (std::filesystem::equivalent: same device and inode),
-/// so that writing an output can never destroy what a program read. Call it
-/// with check_writable, before any work.
+/// either path is spelled (device and inode, std::filesystem::equivalent: a
+/// symbolic link or a hard link is caught), so that writing an output can never
+/// destroy what a program read. Call it with check_writable, before any work.
 inline void check_not_input(const std::filesystem::path& target, const std::vector<std::filesystem::path>& inputs)
 {
     std::error_code ec;
@@ -77,31 +386,68 @@ inline void check_not_input(const std::filesystem::path& target, const std::vect
                             "', found the same file; writing it would destroy the input, so choose another -o");
 }
 
+/// check_not_input for each of `targets`.
+inline void check_not_input(const std::vector<std::filesystem::path>& targets,
+                            const std::vector<std::filesystem::path>& inputs)
+{
+    for (const std::filesystem::path& target : targets)
+        check_not_input(target, inputs);
+}
+
 /// Writes `target` atomically: `write(std::ostream&)` fills a temporary file,
 /// which replaces `target` only if everything succeeded. Throws rt::error.
 template <class Writer>
 void write_atomically(const std::filesystem::path& target, Writer&& write)
 {
     check_writable(target);
-    const std::filesystem::path temporary = detail::temporary_sibling(target);
-    std::error_code ec;
-    try {
-        {
-            std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-            if (!out)
-                throw error(source_location{target.string()}, "cannot create a temporary file beside it");
-            write(static_cast<std::ostream&>(out));
-            out.flush();
-            if (!out)
-                throw error(source_location{target.string()},
-                            "writing failed (disk full?); the previous file, if any, is unchanged");
+    detail::install_cleanup_handlers();
+    detail::pending_file file(target);
+    file.fill([&](std::ostream& out) { write(out); });
+    file.commit();
+}
+
+/// One file of write_all_atomically: where, and what writes its bytes.
+struct output_file {
+    std::filesystem::path target;
+    std::function<void(std::ostream&)> write;
+};
+
+/// Writes every file or none of them: all the temporary files are written
+/// first, and only when every one is complete are they renamed over their
+/// targets. A failure while writing (a full disk, the file size limit, an
+/// exception, a signal) leaves every target as it was and no temporary file.
+/// A rename can only fail if the folder changes under the program; then the
+/// targets renamed so far that did not exist before are removed again, and the
+/// message names any earlier one it had already replaced.
+inline void write_all_atomically(const std::vector<output_file>& outputs)
+{
+    for (const output_file& output : outputs)
+        check_writable(output.target);
+    detail::install_cleanup_handlers();
+    std::vector<std::unique_ptr<detail::pending_file>> files;
+    for (const output_file& output : outputs) {
+        files.push_back(std::make_unique<detail::pending_file>(output.target));
+        files.back()->fill(output.write);
+    }
+    std::vector<bool> existed;
+    for (const output_file& output : outputs) {
+        struct stat status {};
+        existed.push_back(::lstat(output.target.c_str(), &status) == 0);
+    }
+    for (std::size_t k = 0; k < files.size(); ++k) {
+        try {
+            files[k]->commit();
+        } catch (const error& e) {
+            std::string replaced;
+            for (std::size_t j = 0; j < k; ++j) {
+                if (!existed[j])
+                    ::unlink(files[j]->target().c_str());
+                else
+                    replaced += (replaced.empty() ? "" : ", ") + shown_path(files[j]->target().string());
+            }
+            throw error(std::string(e.what()) + (replaced.empty() ? "; no other output was written"
+                                                                  : "; already replaced: " + replaced));
         }
-        std::filesystem::rename(temporary, target, ec);
-        if (ec)
-            throw error(source_location{target.string()}, "cannot replace the file: " + ec.message());
-    } catch (...) {
-        std::filesystem::remove(temporary, ec);
-        throw;
     }
 }
 

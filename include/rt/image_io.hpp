@@ -177,41 +177,62 @@ inline void check_image_output(const std::filesystem::path& path)
 
 namespace detail {
 
-/// Writes `img` to `path` atomically; `write_8bit_ppm(out)` and `rgb8()` give
-/// the 8-bit encodings, PFM is written linear.
+/// The output_file that writes `img` to `path` in the format its extension
+/// names; `write_8bit_ppm(out)` and `rgb8()` give the 8-bit encodings, PFM is
+/// written linear. The writers are called later, by write_atomically or
+/// write_all_atomically, so `img` must outlive that call.
 template <class PpmWriter, class Rgb8>
-void save_by_extension(const std::filesystem::path& path, const image& img, PpmWriter&& write_8bit_ppm, Rgb8&& rgb8)
+output_file image_file_by_extension(const std::filesystem::path& path, const image& img, PpmWriter write_8bit_ppm,
+                                    Rgb8 rgb8)
 {
     const std::string extension = image_format_of(path);
-    if (extension == ".ppm") {
-        write_atomically(path, write_8bit_ppm);
-    } else if (extension == ".pfm") {
-        write_atomically(path, [&](std::ostream& out) { write_pfm(out, img); });
-    } else {
-        const std::vector<std::uint8_t> png = encode_png(img.width, img.height, rgb8());
-        write_atomically(path, [&](std::ostream& out) {
-            out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
-        });
-    }
+    const image* pixels = &img;
+    if (extension == ".ppm")
+        return output_file{path, write_8bit_ppm};
+    if (extension == ".pfm")
+        return output_file{path, [pixels](std::ostream& out) { write_pfm(out, *pixels); }};
+    return output_file{path, [pixels, rgb8](std::ostream& out) {
+                           const std::vector<std::uint8_t> png = encode_png(pixels->width, pixels->height, rgb8());
+                           out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+                       }};
 }
 
 } // namespace detail
+
+/// What save_image(path, img, gamma) writes, as an output_file for
+/// write_all_atomically (several images all or none); `img` must outlive the write.
+inline output_file image_file(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
+{
+    const image* pixels = &img;
+    return detail::image_file_by_extension(
+        path, img, [pixels, gamma](std::ostream& out) { write_ppm(out, *pixels, gamma); },
+        [pixels, gamma] { return to_rgb8(*pixels, gamma); });
+}
+
+/// What save_image(path, img, enc) writes, as an output_file; `img` must outlive the write.
+inline output_file image_file(const std::filesystem::path& path, const image& img, const encoding& enc)
+{
+    const image* pixels = &img;
+    return detail::image_file_by_extension(
+        path, img, [pixels, enc](std::ostream& out) { write_ppm(out, *pixels, enc); },
+        [pixels, enc] { return encode_image(*pixels, enc); });
+}
 
 /// Writes the image to `path`, atomically, in the format its extension names:
 /// .png and .ppm (8-bit: clamped, plain gamma, see to_byte) or .pfm (linear floats).
 /// This is the early stages' writer; stage 08 passes an rt::encoding instead.
 inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
 {
-    detail::save_by_extension(
-        path, img, [&](std::ostream& out) { write_ppm(out, img, gamma); }, [&] { return to_rgb8(img, gamma); });
+    const output_file file = image_file(path, img, gamma);
+    write_atomically(file.target, file.write);
 }
 
 /// Writes the image to `path`, atomically: .png and .ppm through the colour
 /// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
 inline void save_image(const std::filesystem::path& path, const image& img, const encoding& enc)
 {
-    detail::save_by_extension(
-        path, img, [&](std::ostream& out) { write_ppm(out, img, enc); }, [&] { return encode_image(img, enc); });
+    const output_file file = image_file(path, img, enc);
+    write_atomically(file.target, file.write);
 }
 
 } // namespace rt

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ constexpr std::uint32_t no_index = 0xffffffffu;
 
 struct mesh {
     std::string source;                    ///< the path as the scene file wrote it
+    /// the files the mesh was read from, as the OBJ loader opened them: the OBJ
+    /// file, then each MTL file (empty for a mesh made in code); a program checks
+    /// its outputs against them (rt::files_read, rt::check_not_input)
+    std::vector<std::filesystem::path> read_from;
     std::vector<vec3> positions;
     std::vector<index3> triangles;         ///< position indices, one triple per triangle
     std::vector<vec3> normals;             ///< empty when the file has no normals

@@ -649,6 +649,7 @@ struct obj_check {
     /// an unsigned char), and the line and column of each face of 4 or more
     std::vector<std::uint32_t> face_corners;
     std::vector<std::pair<int, int>> polygon_at; // line, column
+    std::vector<std::filesystem::path> libraries; ///< the MTL files opened, for mesh::read_from
 };
 
 inline obj_check check_obj(const std::string& text, const std::string& name, const std::filesystem::path& folder,
@@ -779,6 +780,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                                  "its materials are the default material; copy the MTL file beside the OBJ file");
                     continue;
                 }
+                out.libraries.push_back(folder / file);
                 read_mtl(folder / file, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
@@ -854,6 +856,8 @@ inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& 
     result.polygons = checked.polygons;
     mesh& m = result.geometry;
     m.source = name;
+    m.read_from.push_back(path);
+    m.read_from.insert(m.read_from.end(), checked.libraries.begin(), checked.libraries.end());
     m.positions = std::move(checked.positions);
     for (const detail::mtl_entry& entry : mtl) {
         material mat = entry.value;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <variant>
 #include <vector>
 
@@ -79,6 +80,19 @@ inline aabb scene_bounds(const scene& s)
         box.grow(std::visit([](const auto& concrete) { return bounds(concrete); }, item));
     return box;
     // RT_EXERCISE_END
+}
+
+/// Every file read to make `s`, loaded from `input` (a scene file or a bare
+/// OBJ): `input` itself, then the OBJ and MTL files of each mesh as the loader
+/// recorded them (mesh::read_from). A program checks each output against these
+/// before it writes (rt::check_not_input), so that no output replaces an input.
+inline std::vector<std::filesystem::path> files_read(const std::filesystem::path& input, const scene& s)
+{
+    std::vector<std::filesystem::path> files{input};
+    for (const shape& item : s.shapes)
+        if (const mesh* m = std::get_if<mesh>(&item))
+            files.insert(files.end(), m->read_from.begin(), m->read_from.end());
+    return files;
 }
 
 } // namespace rt

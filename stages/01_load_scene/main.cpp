@@ -42,6 +42,7 @@ int main(int argc, char** argv)
         if (!args.done())
             throw rt::error("expected one scene file, found also '" + args.peek() + "'; usage: stage01_load_scene SCENE");
 
+        rt::check_readable(path, "a scene file"); // the reason (errno) when it cannot be read
         const rt::scene s = stage::load_scene(path);
         std::printf("scene %s\n", path.c_str());
         std::printf("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples, s.max_depth);

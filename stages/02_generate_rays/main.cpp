@@ -57,6 +57,7 @@ int main(int argc, char** argv)
             throw rt::error("expected a scene file, found none; see --help");
         rt::check_writable(output); // fail before the work, not after it
         rt::check_image_path(output);
+        stage::check_input_and_outputs(scene_path, "a scene file", {output});
 
         rt::scene s = stage::load_scene(scene_path, strict);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
@@ -67,16 +68,16 @@ int main(int argc, char** argv)
             s.cam.kind = rt::projection::perspective;
             s.cam.plane.reset();
         }
-        rt::check_not_input(output, rt::input_files(scene_path, s)); // nothing is written yet
+        rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
-        // what stage 02 computed from the camera: the frame and the window (FCG sec. 4.3)
+        stage::save_image(output, rt::render_ray_directions(gen), 1.0f);
+        // then what stage 02 computed from the camera: the frame and the window (FCG sec. 4.3)
         std::fprintf(stderr, "e %g %g %g\nu %g %g %g\nv %g %g %g\nw %g %g %g\nwindow l %g r %g b %g t %g, d %g\n",
                      double(gen.e.x), double(gen.e.y), double(gen.e.z), double(gen.basis.u.x),
                      double(gen.basis.u.y), double(gen.basis.u.z), double(gen.basis.v.x), double(gen.basis.v.y),
                      double(gen.basis.v.z), double(gen.basis.w.x), double(gen.basis.w.y), double(gen.basis.w.z),
                      double(gen.plane.l), double(gen.plane.r), double(gen.plane.b), double(gen.plane.t),
                      double(gen.d));
-        stage::save_image(output, rt::render_ray_directions(gen), 1.0f);
         std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)\n";
         return 0;
     });

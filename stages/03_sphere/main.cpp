@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <iostream>
 #include <limits>
@@ -143,11 +144,20 @@ int main(int argc, char** argv)
         const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
                           normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",
                           depth_png = prefix + "-depth.png";
-        if (!pixel.wanted)
-            for (const std::string& output : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
+        const std::vector<std::filesystem::path> outputs{hit_png, normal_png, normal_pfm, depth_pfm, depth_png};
+        if (!pixel.wanted) {
+            for (const std::filesystem::path& output : outputs)
                 rt::check_writable(output); // fail before the work, not after it
+            stage::check_input_and_outputs(scene_path, "a scene file", outputs);
+        }
 
         const rt::scene s = stage::load_scene(scene_path);
+        if (!pixel.wanted) {
+            rt::check_not_input(outputs, rt::files_read(scene_path, s)); // its OBJ and MTL files too
+            // five images of 12 bytes a pixel (three floats), and the PNGs' bytes
+            rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (5 * 12 + 3),
+                                 "five " + std::to_string(s.width) + "x" + std::to_string(s.height) + " images");
+        }
         std::vector<rt::sphere> spheres;
         std::vector<std::uint32_t> shape_index;
         std::size_t skipped_triangles = 0, skipped_meshes = 0;
@@ -225,11 +235,9 @@ int main(int argc, char** argv)
                 depth_view.pixels[k] =
                     rt::color(range > 0 ? 1.0f - 0.75f * (depths.pixels[k].r - nearest) / range : 1.0f);
 
-        stage::save_image(hit_png, hits, 1.0f);
-        stage::save_image(normal_png, normals, 1.0f);
-        stage::save_image(normal_pfm, normal_values);
-        stage::save_image(depth_pfm, depths);
-        stage::save_image(depth_png, depth_view, 1.0f);
+        // all five or none: every file is complete before the first replaces its target
+        stage::save_images({{hit_png, &hits, 1.0f}, {normal_png, &normals, 1.0f}, {normal_pfm, &normal_values, 1.0f},
+                            {depth_pfm, &depths, 1.0f}, {depth_png, &depth_view, 1.0f}});
 
         std::cerr << "stage03_sphere: " << spheres.size() << " sphere(s) intersected with the " << method << " method";
         if (skipped_triangles + skipped_meshes > 0)

@@ -196,12 +196,17 @@ int main(int argc, char** argv)
         }
         if (input.empty())
             throw rt::error("expected an OBJ or scene file, found none; see --help");
-        if (!pixel.wanted)
-            rt::check_writable(output); // fail before the work, not after it
+        if (!pixel.wanted) {
+            stage::check_image_output(output); // every option, the output format included, before any work
+            stage::check_input_and_outputs(input, ends_with(input, ".scene") ? "a scene file" : "an OBJ file",
+                                           {output});
+        }
 
         const auto load_start = clock_type::now();
         rt::scene s = width > 0 ? stage::load_input(input, width, height, strict)
                                 : stage::load_input(input, std::nullopt, std::nullopt, strict);
+        if (!pixel.wanted)
+            rt::check_not_input(output, rt::files_read(input, s)); // its OBJ and MTL files too
         if (width == 0) {
             width = s.width;
             height = s.height;
@@ -217,7 +222,8 @@ int main(int argc, char** argv)
                 mesh_triangles += std::get<rt::mesh>(item).triangles.size();
             }
         }
-        std::cerr << input << ": " << spheres << " sphere(s), " << triangles << " triangle(s), " << meshes
+        if (!pixel.wanted) // the story alone on stdout, so --pixel-json stays JSON
+            std::cout << input << ": " << spheres << " sphere(s), " << triangles << " triangle(s), " << meshes
                   << " mesh(es) of " << mesh_triangles << " triangle(s) (load " << std::setprecision(3)
                   << seconds_since(load_start) << " s)\n";
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, width, height);
@@ -265,7 +271,7 @@ int main(int argc, char** argv)
             std::size_t hits = 0;
             for (const pixel_hit& h : mine)
                 hits += h.hit ? 1 : 0;
-            std::cerr << "your list: " << hits << " of " << mine.size() << " rays hit, " << std::setprecision(3)
+            std::cout << "your list: " << hits << " of " << mine.size() << " rays hit, " << std::setprecision(3)
                       << seconds << " s (" << std::setprecision(3) << double(mine.size()) / seconds / 1e6
                       << " Mrays/s)\n";
         }
@@ -279,10 +285,10 @@ int main(int argc, char** argv)
             std::size_t hits = 0;
             for (const pixel_hit& h : library)
                 hits += h.hit ? 1 : 0;
-            std::cerr << "the library (" << world.kind() << " over " << world.primitives() << " primitives";
+            std::cout << "the library (" << world.kind() << " over " << world.primitives() << " primitives";
             if (world.kind() == "bvh")
-                std::cerr << ", " << world.nodes() << " nodes";
-            std::cerr << ", built in " << std::setprecision(3) << build_seconds << " s): " << hits << " of "
+                std::cout << ", " << world.nodes() << " nodes";
+            std::cout << ", built in " << std::setprecision(3) << build_seconds << " s): " << hits << " of "
                       << library.size() << " rays hit, " << seconds << " s (" << double(library.size()) / seconds / 1e6
                       << " Mrays/s)\n";
         }
@@ -311,11 +317,11 @@ int main(int argc, char** argv)
                       << " leaked through your triangles (the library hits, yours misses), " << extra
                       << " hit only with yours, " << other << " hit a different shape or depth\n";
             stage::save_image(output, diff, 1.0f);
-            std::cerr << "wrote " << output << " (red: leaks, blue: only yours, yellow: different, grey: the same)\n";
+            std::cout << "wrote " << output << " (red: leaks, blue: only yours, yellow: different, grey: the same)\n";
             return 0;
         }
         stage::save_image(output, picture_of(use_list ? mine : library, width, height, mode, raw), 1.0f);
-        std::cerr << "wrote " << output << " (" << mode << ", " << (use_list ? "your list" : "the library's " + accel)
+        std::cout << "wrote " << output << " (" << mode << ", " << (use_list ? "your list" : "the library's " + accel)
                   << ")\n";
         return 0;
     });

@@ -161,18 +161,35 @@ int main(int argc, char** argv)
             throw rt::error("expected --pixel or --pattern, found both; a pattern has no rays to tell of");
         if (set.pixel.wanted && render.aov != rt::aov_kind::none)
             throw rt::error("expected --pixel or --aov, found both; the story is the shaded image's");
-        if (!set.pixel.wanted)
+        if (!set.pixel.wanted) {
             rt::check_image_output(set.output); // fail before the work, not after it
+            if (set.pattern == pattern_kind::none)
+                stage::check_input_and_outputs(render.input,
+                                               rt::has_obj_extension(render.input) ? "an OBJ file" : "a scene file",
+                                               {set.output});
+        }
 
         rt::scene scene;
         if (set.pattern != pattern_kind::none)
             scene.width = scene.height = 512;
         else
             scene = stage::load_render_input(render); // with --camera and --max-depth applied
+        if (set.pattern == pattern_kind::none)
+            rt::check_not_input(set.output, rt::files_read(render.input, scene)); // its OBJ and MTL files too
 
         rt::render_options options = stage::render_options_for(render, scene);
         options.crop = set.crop;
         rt::check_render_options(options);
+        {
+            // the image (three floats a pixel), then for 8 bits its bytes, and for
+            // a PNG the filtered rows stb_image_write compresses: a lower bound
+            const rt::crop_window area = options.crop.value_or(rt::crop_window{0, options.width, 0, options.height});
+            const std::string format = rt::image_format_of(set.output);
+            const std::uint64_t per_pixel = format == ".pfm" ? 12 : format == ".ppm" ? 15 : 18;
+            rt::check_memory_for(std::uint64_t(area.x1 - area.x0) * std::uint64_t(area.y1 - area.y0) * per_pixel,
+                                 "a " + std::to_string(area.x1 - area.x0) + "x" + std::to_string(area.y1 - area.y0) +
+                                     " image");
+        }
 
         if (set.pixel.wanted) {
             // the ray through the pixel's centre, traced by the stage-07 colour function

@@ -5,6 +5,7 @@
 // tell that pixel's story (pixel_story.hpp).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -37,9 +38,17 @@ void render_shaded(const std::string& program, const std::string& scene_path, co
                    const pixel_request& pixel, const story_options& explain, const Colour& colour,
                    const std::function<void(rt::scene&)>& adjust = {})
 {
-    if (!pixel.wanted)
-        rt::check_writable(output); // fail before the work, not after it
+    if (!pixel.wanted) {
+        check_image_output(output); // every option, the output format included, before any work
+        check_input_and_outputs(scene_path, "a scene file", {output});
+    }
     rt::scene s = stage::load_scene(scene_path);
+    if (!pixel.wanted) {
+        rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too
+        // the image (three floats a pixel) and its bytes
+        rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (12 + 3),
+                             "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
+    }
     if (adjust)
         adjust(s);
     const stage::world w(s);

@@ -20,6 +20,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <rt/hit_record.hpp>
 #include <rt/image.hpp>
@@ -46,6 +47,21 @@ rt::scene load_input(const std::string& path, std::optional<int> width = std::nu
 /// rt::save_image: `img` to `path` (.png, .ppm or .pfm), written atomically;
 /// 8-bit formats clamp and apply 1/gamma (1: bytes proportional to the values).
 void save_image(const std::string& path, const rt::image& img, float gamma = 2.2f);
+
+/// One image to write: where, what, and the gamma of 8-bit formats.
+struct image_output {
+    std::string path;
+    const rt::image* pixels;
+    float gamma = 2.2f;
+};
+
+/// Writes every image or none (rt::write_all_atomically): each file is
+/// complete before the first replaces its target.
+void save_images(const std::vector<image_output>& outputs);
+
+/// rt::check_image_output: an rt::error unless `path` names a writable
+/// .png, .ppm or .pfm file (call it before any work).
+void check_image_output(const std::string& path);
 
 /// The three bytes save_image stores for a linear colour `c` ("186 137 0").
 std::string stored_bytes(const rt::color& c, float gamma = 2.2f);

@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -706,8 +707,15 @@ int main(int argc, char** argv)
         if (set.render.input.empty())
             throw rt::error("expected a scene file or an OBJ file, found none; see --help");
         rt::check_image_output(set.output); // the save key must not fail at the end
-        viewer::parse_script(set.script, set.script_name); // script errors before the window opens
+        // script errors before the window opens; the files a script writes are outputs too
+        std::vector<std::filesystem::path> outputs{set.output};
+        for (const viewer::script_command& c : viewer::parse_script(set.script, set.script_name))
+            if (c.name == "save" || c.name == "screenshot" || c.name == "title" || c.name == "args")
+                outputs.push_back(c.arguments[0]);
+        stage::check_input_and_outputs(set.render.input,
+                                       rt::has_obj_extension(set.render.input) ? "an OBJ file" : "a scene file", outputs);
         rt::scene scene = stage::load_render_input(set.render);
+        rt::check_not_input(outputs, rt::files_read(set.render.input, scene)); // its OBJ and MTL files too
         const sdl_session sdl;
         // without a display SDL falls back to a driver that shows nothing: fine for a script, not for a person
         const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
