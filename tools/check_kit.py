@@ -14,7 +14,9 @@
      least one such failure (so its tests can fail);
    - every stage program exits with 3 and "not done yet: ..." on scenes/showcase.scene.
 4. For each stage with exercise regions, a kit with only that stage stripped: its cases fail
-   as above, every case of every other stage passes.
+   as above, every case of every other stage passes; its own stage program exits 3 naming
+   the stage and every earlier stage's program exits 0 (a program runs the student's code of
+   its stage and earlier ones, nothing later).
 A failing case of stage k that names another stage's exercise is a bug in that test (it
 calls another stage's exercise) and is reported by name.
 
@@ -237,6 +239,41 @@ def check_programs(report: KitReport, kit: Path, build: Path) -> None:
                                    f"{p.returncode}: {err[-300:] or '(no message)'}")
 
 
+def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) -> None:
+    """A kit with only `stage` stripped: every program runs the student's code of its own
+    stage and earlier ones, and nothing later. So the stage's own program exits 3 naming
+    the stage, and every earlier stage's program exits 0 (it reaches no stripped code)."""
+    scene = kit / "scenes" / "showcase.scene"
+    before = len(report.problems)
+    for target, folder in program_targets(kit):
+        number = int(folder.name[:2])
+        if number > stage:
+            continue  # later programs run this stage's code too
+        exe = build / "stages" / target
+        if not exe.is_file():
+            report.problems.append(f"{target}: not built")
+            continue
+        with tempfile.TemporaryDirectory() as cwd:
+            try:
+                p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=300)
+            except subprocess.TimeoutExpired:
+                report.problems.append(f"{target}: still running after 300 s")
+                continue
+        err = p.stderr.decode("utf-8", "replace").strip()
+        last = err.splitlines()[-1] if err else "(no message)"
+        if number == stage:
+            if p.returncode == 3 and f"not done yet: stage {stage:02d}" in err:
+                report.notes.append(f"{target}: exit 3: {last}")
+            else:
+                report.problems.append(f"{target}: expected exit 3 and 'not done yet: stage {stage:02d}' (its "
+                                       f"own stage is stripped), found exit {p.returncode}: {last[-300:]}")
+        elif p.returncode != 0:
+            report.problems.append(f"{target}: expected exit 0 with only stage {stage:02d} stripped (a program "
+                                   f"runs no later stage's code), found exit {p.returncode}: {last[-300:]}")
+    if len(report.problems) == before:
+        report.notes.append(f"programs of stages before {stage:02d} exit 0, stage {stage:02d}'s exits 3")
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--source", default=str(make_kit.DEFAULT_SOURCE), help="the reference repository")
@@ -293,7 +330,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     # 3 and 4. the kits, all in one folder updated in place
     kit = work / "kit"
     builder = Builder(kit, kit / "build", args.jobs, None)
+    # A kit is a student build (RT_STUDENT_BUILD: no benchmarks, no per-header
+    # checks); the kit with every stage stripped builds them anyway, to prove
+    # they compile without the exercises.
+    builder.extra = ["-DRT_BUILD_BENCH=ON", "-DRT_HEADER_CHECK=ON"]
     clang = None if args.no_clang or not shutil.which("clang++") else Builder(kit, kit / "build-clang", args.jobs, "clang++")
+    if clang is not None:
+        clang.extra = ["-DRT_HEADER_CHECK=ON"]
     plans = [("all stages stripped", set(all_stages))] + \
             [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
     for name, stripped in plans:
@@ -317,12 +360,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             judge(report, cases, stripped & set(stages_with_regions), region_messages)
             if first:
                 check_programs(report, kit, kit / "build")
+            elif len(stripped) == 1:
+                check_program_rule(report, kit, kit / "build", next(iter(stripped)))
         if first:
             # The benchmarks are outside every region: the kit with every stage
             # stripped has just shown that they compile without the exercises.
             # The per-stage kits run tests only, and the benchmarks were about
             # 40% of each kit's compile time (CI runs on 2 cores).
-            builder.extra = ["-DRT_BUILD_BENCH=OFF"]
+            builder.extra = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF"]
             builder.configured = False
         if first and clang is not None:
             ok, out = clang.targets(test_targets(kit) + ["rt_header_check"])
