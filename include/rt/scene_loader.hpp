@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -237,6 +238,18 @@ private:
     std::size_t next_ = 1; // tokens_[0] is the keyword
 };
 
+namespace detail {
+
+/// A number in at most 6 significant digits, for messages.
+inline std::string short_number_text(double x)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", x);
+    return text;
+}
+
+} // namespace detail
+
 /// Reads a camera statement into `cam`:
 ///     camera perspective|orthographic [eye x y z] [look_at x y z] [up x y z]
 ///                                     [fov degrees] [window l r b t] [focal d]
@@ -295,8 +308,27 @@ inline void parse_camera(statement& line, camera& cam)
     if (glm::dot(view, view) == real(0))
         throw parse_error(view_at, "a look_at point different from the eye", "the same point",
                           "the camera needs a direction to look in");
-    const vec3 side = glm::cross(cam.up, view);
-    if (!(glm::dot(side, side) > real(1e-12) * glm::dot(view, view) * glm::dot(cam.up, cam.up)))
+    // The frame normalises look_at - eye, which squares its length: past about
+    // 1e19 in float that square overflows and every ray would be NaN.
+    if (!std::isfinite(glm::dot(view, view)))
+        throw parse_error(view_at, "an eye within about 1e19 of look_at (the square of the distance must fit rt::real)",
+                          "a distance whose square overflows",
+                          "move the scene nearer the origin, or build with -DRT_USE_DOUBLE=ON");
+    // the frame normalises up x w too: |up|^2 must be a normal, finite number
+    const real up_squared = glm::dot(cam.up, cam.up);
+    if (!(up_squared >= std::numeric_limits<real>::min() && std::isfinite(up_squared)))
+        throw parse_error(up_at, "an up vector whose squared length fits rt::real (a length from about 1e-19 to 1e19)",
+                          "one of length " + detail::short_number_text(double(glm::length(glm::dvec3(cam.up)))),
+                          "the length of up does not matter: use 0 1 0 or 0 0 1");
+    // up and the view direction scaled to a largest coordinate of 1 first, so
+    // that neither a huge nor a tiny vector overflows the test (the test is
+    // sin^2 of their angle > 1e-12)
+    auto scaled = [](const vec3& a) {
+        return a / std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z)));
+    };
+    const vec3 up = scaled(cam.up), ahead = scaled(view);
+    const vec3 side = glm::cross(up, ahead);
+    if (!(glm::dot(side, side) > real(1e-12) * glm::dot(ahead, ahead) * glm::dot(up, up)))
         throw parse_error(up_at, "an up vector not parallel to the view direction", "a parallel one",
                           "choose an up vector that differs from look_at - eye, such as 0 1 0 or 0 0 1");
     // RT_EXERCISE_END
@@ -621,8 +653,17 @@ private:
                               "check the OBJ file " + found_text(relative.string()));
         triangles_ += m.triangles.size();
         m.source = relative.string();
-        for (vec3& p : m.positions)
+        for (vec3& p : m.positions) {
             p = p * scale + translate;
+            // the OBJ reader's limit holds after scale and translate too: beyond it
+            // the triangle tests' products overflow and the mesh would vanish
+            const real largest = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+            if (!(double(largest) <= options_.obj.max_coordinate))
+                throw parse_error(where, "a mesh within +-" + detail::short_number_text(options_.obj.max_coordinate) +
+                                             " after its scale and translate",
+                                  "a vertex at " + detail::short_number_text(double(largest)),
+                                  "float arithmetic cannot trace coordinates that large; use a smaller scale");
+        }
         if (material_index != -2) {
             m.material = material_index;
             m.face_materials.clear();
