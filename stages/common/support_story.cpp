@@ -118,6 +118,8 @@ void print_story(std::ostream& out, const story& s, const rt::scene& sc)
             << interval(q);
         if (q.role != "camera")
             out << ", origin " << triple(q.r.origin) << ", direction " << triple(q.r.direction);
+        if (!closest && std::isfinite(double(q.tmax)))
+            out << ", ends at " << triple(q.r.at(q.tmax));
         out << "\n";
         if (!q.hit) {
             out << "    " << (closest ? "missed: the background " + colour_text(sc.background)
@@ -173,6 +175,8 @@ void print_story_json(std::ostream& out, const story& s, const rt::scene& sc)
             << (q.what == query_record::kind::closest ? "closest" : "any") << "\", \"origin\": "
             << json_triple(q.r.origin) << ", \"direction\": " << json_triple(q.r.direction)
             << ", \"tmin\": " << json_number(double(q.tmin)) << ", \"tmax\": " << json_number(double(q.tmax))
+            << ", \"end\": "
+            << (std::isfinite(double(q.tmax)) ? json_triple(q.r.at(q.tmax)) : std::string("null"))
             << ", \"hit\": " << (q.hit ? "true" : "false");
         if (q.hit)
             out << ", \"shape\": " << q.rec.shape << ", \"shape_kind\": " << json_string(shape_kind(sc, q.rec.shape))
