@@ -218,6 +218,17 @@ def first_line(output: str) -> str:
     return lines[-1] if lines else "(no output)"
 
 
+def run_program(exe: Path, scene: Path, timeout: int = 300) -> Tuple[Optional[int], str]:
+    """Runs a stage program on `scene` in an empty folder: (exit code, stderr), or
+    (None, what went wrong) when it did not finish."""
+    with tempfile.TemporaryDirectory() as cwd:
+        try:
+            p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            return None, f"still running after {timeout} s"
+    return p.returncode, p.stderr.decode("utf-8", "replace").strip()
+
+
 def check_programs(report: KitReport, kit: Path, build: Path) -> None:
     scene = kit / "scenes" / "showcase.scene"
     for target, _ in program_targets(kit):
@@ -225,18 +236,15 @@ def check_programs(report: KitReport, kit: Path, build: Path) -> None:
         if not exe.is_file():
             report.problems.append(f"{target}: not built")
             continue
-        with tempfile.TemporaryDirectory() as cwd:
-            try:
-                p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=120)
-            except subprocess.TimeoutExpired:
-                report.problems.append(f"{target}: still running after 120 s")
-                continue
-        err = p.stderr.decode("utf-8", "replace").strip()
-        if p.returncode == 3 and "not done yet: stage" in err:
+        code, err = run_program(exe, scene)
+        if code is None:
+            report.problems.append(f"{target}: {err}")
+            continue
+        if code == 3 and "not done yet: stage" in err:
             report.notes.append(f"{target}: exit 3: {err.splitlines()[-1]}")
         else:
             report.problems.append(f"{target}: expected exit 3 and 'not done yet: stage ...', found exit "
-                                   f"{p.returncode}: {err[-300:] or '(no message)'}")
+                                   f"{code}: {err[-300:] or '(no message)'}")
 
 
 def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) -> None:
@@ -253,23 +261,20 @@ def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) ->
         if not exe.is_file():
             report.problems.append(f"{target}: not built")
             continue
-        with tempfile.TemporaryDirectory() as cwd:
-            try:
-                p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=300)
-            except subprocess.TimeoutExpired:
-                report.problems.append(f"{target}: still running after 300 s")
-                continue
-        err = p.stderr.decode("utf-8", "replace").strip()
+        code, err = run_program(exe, scene)
+        if code is None:
+            report.problems.append(f"{target}: {err}")
+            continue
         last = err.splitlines()[-1] if err else "(no message)"
         if number == stage:
-            if p.returncode == 3 and f"not done yet: stage {stage:02d}" in err:
+            if code == 3 and f"not done yet: stage {stage:02d}" in err:
                 report.notes.append(f"{target}: exit 3: {last}")
             else:
                 report.problems.append(f"{target}: expected exit 3 and 'not done yet: stage {stage:02d}' (its "
-                                       f"own stage is stripped), found exit {p.returncode}: {last[-300:]}")
-        elif p.returncode != 0:
+                                       f"own stage is stripped), found exit {code}: {last[-300:]}")
+        elif code != 0:
             report.problems.append(f"{target}: expected exit 0 with only stage {stage:02d} stripped (a program "
-                                   f"runs no later stage's code), found exit {p.returncode}: {last[-300:]}")
+                                   f"runs no later stage's code), found exit {code}: {last[-300:]}")
     if len(report.problems) == before:
         report.notes.append(f"programs of stages before {stage:02d} exit 0, stage {stage:02d}'s exits 3")
 

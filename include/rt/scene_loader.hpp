@@ -238,18 +238,6 @@ private:
     std::size_t next_ = 1; // tokens_[0] is the keyword
 };
 
-namespace detail {
-
-/// A number in at most 6 significant digits, for messages.
-inline std::string short_number_text(double x)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", x);
-    return text;
-}
-
-} // namespace detail
-
 /// Reads a camera statement into `cam`:
 ///     camera perspective|orthographic [eye x y z] [look_at x y z] [up x y z]
 ///                                     [fov degrees] [window l r b t] [focal d]
@@ -318,7 +306,7 @@ inline void parse_camera(statement& line, camera& cam)
     const real up_squared = glm::dot(cam.up, cam.up);
     if (!(up_squared >= std::numeric_limits<real>::min() && std::isfinite(up_squared)))
         throw parse_error(up_at, "an up vector whose squared length fits rt::real (a length from about 1e-19 to 1e19)",
-                          "one of length " + detail::short_number_text(double(glm::length(glm::dvec3(cam.up)))),
+                          "one of length " + detail::short_number(double(glm::length(glm::dvec3(cam.up)))),
                           "the length of up does not matter: use 0 1 0 or 0 0 1");
     // up and the view direction scaled to a largest coordinate of 1 first, so
     // that neither a huge nor a tiny vector overflows the test (the test is
@@ -659,9 +647,9 @@ private:
             // the triangle tests' products overflow and the mesh would vanish
             const real largest = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
             if (!(double(largest) <= options_.obj.max_coordinate))
-                throw parse_error(where, "a mesh within +-" + detail::short_number_text(options_.obj.max_coordinate) +
+                throw parse_error(where, "a mesh within +-" + detail::short_number(options_.obj.max_coordinate) +
                                              " after its scale and translate",
-                                  "a vertex at " + detail::short_number_text(double(largest)),
+                                  "a vertex at " + detail::short_number(double(largest)),
                                   "float arithmetic cannot trace coordinates that large; use a smaller scale");
         }
         if (material_index != -2) {

@@ -62,19 +62,9 @@ int main(int argc, char** argv)
                                                          : "the window [-1, 1] in v, widened to the aspect (the default)");
         std::printf("  focal    %g\n", double(cam.focal_distance));
 
-        std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0;
-        for (const rt::shape& item : s.shapes) {
-            if (std::holds_alternative<rt::sphere>(item))
-                ++spheres;
-            else if (std::holds_alternative<rt::triangle>(item))
-                ++triangles;
-            else {
-                ++meshes;
-                mesh_triangles += std::get<rt::mesh>(item).triangles.size();
-            }
-        }
+        const stage::shape_counts n = stage::count_shapes(s);
         std::printf("shapes %zu: %zu sphere(s), %zu triangle(s), %zu mesh(es) with %zu triangle(s)\n", s.shapes.size(),
-                    spheres, triangles, meshes, mesh_triangles);
+                    n.spheres, n.triangles, n.meshes, n.mesh_triangles);
         std::printf("materials %zu, lights %zu\n", s.materials.size(), s.lights.size());
         const rt::aabb box = rt::scene_bounds(s);
         if (box.empty()) {

@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <variant>
@@ -211,21 +212,11 @@ int main(int argc, char** argv)
             width = s.width;
             height = s.height;
         }
-        std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0;
-        for (const rt::shape& item : s.shapes) {
-            if (std::holds_alternative<rt::sphere>(item))
-                ++spheres;
-            else if (std::holds_alternative<rt::triangle>(item))
-                ++triangles;
-            else {
-                ++meshes;
-                mesh_triangles += std::get<rt::mesh>(item).triangles.size();
-            }
-        }
+        const stage::shape_counts n = stage::count_shapes(s);
         if (!pixel.wanted) // the story alone on stdout, so --pixel-json stays JSON
-            std::cout << input << ": " << spheres << " sphere(s), " << triangles << " triangle(s), " << meshes
-                  << " mesh(es) of " << mesh_triangles << " triangle(s) (load " << std::setprecision(3)
-                  << seconds_since(load_start) << " s)\n";
+            std::cout << input << ": " << n.spheres << " sphere(s), " << n.triangles << " triangle(s), " << n.meshes
+                      << " mesh(es) of " << n.mesh_triangles << " triangle(s) (load " << std::setprecision(3)
+                      << seconds_since(load_start) << " s)\n";
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, width, height);
         const stage::textbook_list list{&s};
 
@@ -255,7 +246,7 @@ int main(int argc, char** argv)
 
         const bool geometric = mode == "geometric";
         const bool raw = ends_with(output, ".pfm");
-        const std::size_t primitives = spheres + triangles + mesh_triangles;
+        const std::size_t primitives = n.spheres + n.triangles + n.mesh_triangles;
         const double tests = double(primitives) * double(width) * double(height);
         const bool use_list = accel == "list" || compare;
         // the list tests every shape for every ray: about 10 ns a test here, so
@@ -266,34 +257,30 @@ int main(int argc, char** argv)
                             std::to_string(tests / 1e9).substr(0, 5) +
                             " billion tests); try --size 160x120, or --accel bvh for the library's BVH");
 
-        std::vector<pixel_hit> mine, library;
-        if (use_list) {
+        // every pixel traced with `world`, timed, and one line: how many hit, how fast
+        auto trace_timed = [&](const auto& world, const std::string& name) {
             const auto start = clock_type::now();
-            mine = trace_image(list, gen, geometric);
+            std::vector<pixel_hit> hits = trace_image(world, gen, geometric);
             const double seconds = seconds_since(start);
-            std::size_t hits = 0;
-            for (const pixel_hit& h : mine)
-                hits += h.hit ? 1 : 0;
-            std::cout << "your list: " << hits << " of " << mine.size() << " rays hit, " << std::setprecision(3)
-                      << seconds << " s (" << std::setprecision(3) << double(mine.size()) / seconds / 1e6
-                      << " Mrays/s)\n";
-        }
+            std::size_t count = 0;
+            for (const pixel_hit& h : hits)
+                count += h.hit ? 1 : 0;
+            std::cout << name << ": " << count << " of " << hits.size() << " rays hit, " << std::setprecision(3)
+                      << seconds << " s (" << double(hits.size()) / seconds / 1e6 << " Mrays/s)\n";
+            return hits;
+        };
+        std::vector<pixel_hit> mine, library;
+        if (use_list)
+            mine = trace_timed(list, "your list");
         if (accel != "list" || compare) {
             const auto build_start = clock_type::now();
             const stage::world world(s, accel == "list" ? "auto" : accel);
-            const double build_seconds = seconds_since(build_start);
-            const auto start = clock_type::now();
-            library = trace_image(world, gen, geometric);
-            const double seconds = seconds_since(start);
-            std::size_t hits = 0;
-            for (const pixel_hit& h : library)
-                hits += h.hit ? 1 : 0;
-            std::cout << "the library (" << world.kind() << " over " << world.primitives() << " primitives";
+            std::ostringstream name;
+            name << "the library (" << world.kind() << " over " << world.primitives() << " primitives";
             if (world.kind() == "bvh")
-                std::cout << ", " << world.nodes() << " nodes";
-            std::cout << ", built in " << std::setprecision(3) << build_seconds << " s): " << hits << " of "
-                      << library.size() << " rays hit, " << seconds << " s (" << double(library.size()) / seconds / 1e6
-                      << " Mrays/s)\n";
+                name << ", " << world.nodes() << " nodes";
+            name << ", built in " << std::setprecision(3) << seconds_since(build_start) << " s)";
+            library = trace_timed(world, name.str());
         }
 
         if (compare) {

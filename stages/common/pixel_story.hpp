@@ -51,27 +51,14 @@ public:
     bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const
     {
         const bool hit = inner_->closest_hit(r, tmin, tmax, rec);
-        query_record q;
-        q.what = query_record::kind::closest;
-        q.r = r;
-        q.tmin = tmin;
-        q.tmax = tmax;
-        q.hit = hit;
-        if (hit)
-            q.rec = rec;
-        log_->push_back(q);
+        log_->push_back(query_record{query_record::kind::closest, r, tmin, tmax, hit, hit ? rec : rt::hit_record{}, ""});
         return hit;
     }
 
     bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const
     {
         const bool hit = inner_->any_hit(r, tmin, tmax);
-        query_record q;
-        q.what = query_record::kind::any;
-        q.r = r;
-        q.tmin = tmin;
-        q.tmax = tmax;
-        q.hit = hit;
+        query_record q{query_record::kind::any, r, tmin, tmax, hit, rt::hit_record{}, ""};
         if (hit) // which shape blocked it: the nearest hit in the same interval
             inner_->closest_hit(r, tmin, tmax, q.rec);
         log_->push_back(q);

@@ -16,10 +16,12 @@
 // rt::accelerator, rt::render, rt::save_image); only where it is compiled differs.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <rt/hit_record.hpp>
@@ -47,6 +49,27 @@ rt::scene load_input(const std::string& path, std::optional<int> width = std::nu
 /// rt::save_image: `img` to `path` (.png, .ppm or .pfm), written atomically;
 /// 8-bit formats clamp and apply 1/gamma (1: bytes proportional to the values).
 void save_image(const std::string& path, const rt::image& img, float gamma = 2.2f);
+
+/// How many shapes of each kind a scene holds, and the triangles of its meshes.
+struct shape_counts {
+    std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0;
+};
+
+inline shape_counts count_shapes(const rt::scene& s)
+{
+    shape_counts n;
+    for (const rt::shape& item : s.shapes) {
+        if (std::holds_alternative<rt::sphere>(item))
+            ++n.spheres;
+        else if (std::holds_alternative<rt::triangle>(item))
+            ++n.triangles;
+        else {
+            ++n.meshes;
+            n.mesh_triangles += std::get<rt::mesh>(item).triangles.size();
+        }
+    }
+    return n;
+}
 
 /// One image to write: where, what, and the gamma of 8-bit formats.
 struct image_output {
