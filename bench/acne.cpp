@@ -1,15 +1,22 @@
 // Experiment 5: self-intersection, acne fraction against scene scale, fixed
-// epsilon vs robust offset.
+// epsilon vs the Ray Tracing Gems offset vs the error-bounded spawn.
 //
 // The scene: a unit sphere resting on a ground plane (two triangles), a point
 // light above, a camera in front; every coordinate multiplied by a scale S =
 // 1e-4 ... 1e5. Each primary hit (rt::accelerator::closest_hit) gets a shadow
-// ray to the light three ways:
+// ray to the light five ways:
 //   no_offset      from the hit point itself, t in [0, ...): the naive ray;
 //   fixed_epsilon  rt::light_visible_fixed_epsilon (t >= 1e-4, the textbook's);
-//   robust_offset  rt::light_visible (Ray Tracing Gems ch. 6 offset, the stage-06 shadow ray);
+//   rtg_offset     from rt::offset_ray_origin(p, n_g) (Ray Tracing Gems ch. 6,
+//                  the offset stage 06 teaches; rt::light_visible used it
+//                  before issue 19; this CSV row was called robust_offset then),
+//                  t up to the light's distance times 1 - 1e-4;
 //   error_bounds   rt::spawn_ray (PBR 3rd ed. sec. 3.9.5: past the hit point's
-//                  rounding error bound), t in [0, ...).
+//                  rounding error bound) along the direction to the light,
+//                  t up to the distance from the spawned origin times 1 - 1e-4;
+//   light_visible  rt::light_visible itself: since issue 19 the segment of
+//                  rt::spawn_ray_to (the same error bound, the side decided
+//                  robustly for grazing rays), t in [0, 1 - shadow_epsilon).
 // The truth comes from the analytic scene in double: a ground point is in
 // shadow exactly when its segment to the light passes through the sphere; a
 // sphere point is lit exactly when its outward normal faces the light (the
@@ -25,6 +32,7 @@
 #include <rt/camera.hpp>
 #include <rt/intersect.hpp>
 #include <rt/light.hpp>
+#include <rt/offset.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>
 #include <rt/spawn.hpp>
@@ -46,7 +54,7 @@ dvec sub(const dvec& a, const dvec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z
 
 enum class truth { lit, shadowed, ambiguous };
 
-constexpr int methods = 4;
+constexpr int methods = 5;
 
 } // namespace
 
@@ -119,13 +127,16 @@ int main(int argc, char** argv)
                     }
                     (t == truth::lit ? lit : shadowed)++;
                     const rt::light_sample sample = rt::sample_light(lamp, hit.point);
+                    const real tmax = sample.distance * (1 - real(1e-4));
+                    const rt::ray rtg{rt::offset_ray_origin(hit.point, hit.geometric_normal), sample.l};
                     const rt::ray spawned = rt::spawn_ray(hit, sample.l);
                     const real spawned_tmax = glm::length(lamp.position - spawned.origin) * (1 - real(1e-4));
                     const bool visible[methods] = {
-                        !accel.any_hit(rt::ray{hit.point, sample.l}, real(0), sample.distance * (1 - real(1e-4))),
+                        !accel.any_hit(rt::ray{hit.point, sample.l}, real(0), tmax),
                         rt::light_visible_fixed_epsilon(accel, hit, sample),
-                        rt::light_visible(accel, hit, sample),
-                        !accel.any_hit(spawned, real(0), spawned_tmax)};
+                        !accel.any_hit(rtg, real(0), tmax),
+                        !accel.any_hit(spawned, real(0), spawned_tmax),
+                        rt::light_visible(accel, hit, sample)};
                     for (int m = 0; m < methods; ++m) {
                         if (t == truth::lit && !visible[m])
                             ++acne[m];
@@ -133,7 +144,8 @@ int main(int argc, char** argv)
                             ++leaks[m];
                     }
                 }
-            const char* names[methods] = {"no_offset", "fixed_epsilon", "robust_offset", "error_bounds"};
+            const char* names[methods] = {"no_offset", "fixed_epsilon", "rtg_offset", "error_bounds",
+                                          "light_visible"};
             for (int m = 0; m < methods; ++m) {
                 const double af = lit ? double(acne[m]) / double(lit) : 0;
                 const double lf = shadowed ? double(leaks[m]) / double(shadowed) : 0;

@@ -5,10 +5,13 @@
 //   outside    primary rays from a camera outside the model, looking at it
 //              (row by row through pixel centres: coherent);
 //   centre     primary rays from the centre of the bounding box, 90 degree field of view;
-//   shadow     from each hit of those two sets to a light (any hit, segment
-//              ends just short of the light); the rays start at the hit point
-//              moved off the surface by rt::offset_ray_origin along the
-//              geometric normal that faces the light;
+//   shadow     from each hit of those two sets to a light (any hit): the
+//              segment rt::spawn_ray_to gives, traced in [0, 1 - shadow_epsilon),
+//              as rt::light_visible traces it (since issue 19; before, the rays
+//              started at rt::offset_ray_origin, the Ray Tracing Gems offset).
+//              Its hit record is rt's own (rt::fill_triangle_record) at
+//              Embree's hit, from Embree's barycentrics: the point, its
+//              rounding error bound and rt::triangle_normal;
 //   incoherent from uniform random points of the bounding sphere to uniform
 //              random points of the box.
 // rt uses its scene-level accelerator (rt::accelerator, kind bvh: closest_hit
@@ -27,7 +30,8 @@
 #include <vector>
 
 #include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
+#include <rt/spawn.hpp>
+#include <rt/triangle.hpp>
 #include <rt/random.hpp>
 #include <rt/scene.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
@@ -115,6 +119,14 @@ public:
     /// The closest hit's t, triangle and geometric normal (unit, not oriented).
     bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal) const
     {
+        float u = 0, v = 0;
+        return closest_with_normal(r, tmax, t, triangle, normal, u, v);
+    }
+
+    /// The same, with Embree's barycentrics: the hit is (1 - u - v) v0 + u v1 + v v2.
+    bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal, float& u,
+                             float& v) const
+    {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit query;
@@ -127,6 +139,8 @@ public:
         t = query.ray.tfar;
         triangle = query.hit.primID;
         normal = glm::normalize(vec3(real(query.hit.Ng_x), real(query.hit.Ng_y), real(query.hit.Ng_z)));
+        u = query.hit.u;
+        v = query.hit.v;
         return true;
     }
 
@@ -212,27 +226,30 @@ ray_set incoherent(const model& m, std::size_t count)
     return set;
 }
 
-/// Shadow rays from the hits of `from` (found by Embree) towards `light`.
-void add_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& embree, const vec3& light)
+/// Shadow rays from the hits of `from` (found by Embree) towards `light`, as
+/// rt::light_visible sends them: the segment of rt::spawn_ray_to (t = 1 at the
+/// light), up to 1 - rt::shadow_epsilon.
+void add_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& embree, const rt::mesh& g,
+                     const vec3& light)
 {
     for (const rt::ray& r : from.rays) {
-        float t = 0;
+        float t = 0, u = 0, v = 0;
         unsigned triangle = 0;
         vec3 n;
-        if (!embree.closest_with_normal(r, infinity, t, triangle, n))
+        if (!embree.closest_with_normal(r, infinity, t, triangle, n, u, v))
             continue;
-        const vec3 p = r.at(real(t));
-        const vec3 to_light = light - p;
-        const real distance = glm::length(to_light);
-        if (!(distance > 0))
+        auto corner = [&](int c) { return g.positions[g.triangles[triangle][std::size_t(c)]]; };
+        rt::triangle_hit h;
+        h.t = real(t);
+        h.b0 = 1 - real(u) - real(v);
+        h.b1 = real(u);
+        h.b2 = real(v);
+        rt::hit_record rec;
+        rt::fill_triangle_record(corner(0), corner(1), corner(2), r, h, rec);
+        if (!(glm::length(light - rec.point) > 0))
             continue;
-        const vec3 l = to_light / distance;
-        if (glm::dot(n, l) < 0) // leave on the side the light is on
-            n = -n;
-        const vec3 origin = rt::offset_ray_origin(p, n);
-        const real remaining = glm::length(light - origin);
-        shadow.rays.push_back(rt::ray{origin, glm::normalize(light - origin)});
-        shadow.tmax.push_back(float(remaining * (real(1) - real(1e-4))));
+        shadow.rays.push_back(rt::spawn_ray_to(rec, light));
+        shadow.tmax.push_back(float(real(1) - rt::shadow_epsilon));
         shadow.source.push_back(triangle);
     }
 }
@@ -381,8 +398,8 @@ int main(int argc, char** argv)
             shadow.shadow = true;
             // a light above and in front of the model for the outside view, one
             // inside the box, above the centre, for the centre view
-            add_shadow_rays(shadow, sets[0], embree, centre + real(1.5) * radius * glm::normalize(vec3(-0.4, 1, 0.6)));
-            add_shadow_rays(shadow, sets[1], embree,
+            add_shadow_rays(shadow, sets[0], embree, m.geometry, centre + real(1.5) * radius * glm::normalize(vec3(-0.4, 1, 0.6)));
+            add_shadow_rays(shadow, sets[1], embree, m.geometry,
                             centre + vec3(real(0.1), real(0.35), real(0.05)) * m.box.extent());
             sets.push_back(std::move(shadow));
             sets.push_back(incoherent(m, incoherent_count));
@@ -428,7 +445,7 @@ int main(int argc, char** argv)
                     // shadow rays on which the two disagree: does Embree's occluder
                     // lie on the triangle the ray starts from (self-intersection)?
                     std::size_t embree_self = 0, embree_coplanar = 0, real_occluder = 0, embree_only = 0, rt_only = 0;
-                    std::vector<std::string> examples; // t / scene radius of the other occluders
+                    std::vector<std::string> examples; // distance / scene radius of the other occluders
                     if (set.shadow && !rt_answer.empty())
                         for (std::size_t k = 0; k < set.rays.size(); ++k) {
                             const bool rt_blocked = rt_answer[k] < infinity, embree_blocked = embree_answer[k] < infinity;
@@ -466,7 +483,8 @@ int main(int argc, char** argv)
                                            set.tmax[k])) {
                                 ++real_occluder;
                                 if (examples.size() < 5)
-                                    examples.push_back(std::to_string(t / float(radius)));
+                                    examples.push_back(std::to_string(
+                                        t * float(glm::length(set.rays[k].direction)) / float(radius)));
                             }
                         }
                     if (embree_only + rt_only > 0) {
@@ -479,7 +497,7 @@ int main(int argc, char** argv)
                             std::to_string(embree_coplanar) + " by a triangle in its plane (overlapping geometry), " +
                             std::to_string(real_occluder) +
                             " by a triangle the ray truly hits (long-double Moller-Trumbore)" +
-                            (others.empty() ? "" : " at t / scene radius = " + others + " ...");
+                            (others.empty() ? "" : " at distance / scene radius = " + others + " ...");
                         std::cout << "  shadow mismatches: " << text << '\n';
                         rays.note(file + " shadow mismatches (" + std::to_string(threads) + " threads)", text);
                     }

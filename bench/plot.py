@@ -226,18 +226,23 @@ def plot_acne(data, charts):
         return print("acne: no", path)
     notes, rows = read(path)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-    colours = {"no_offset": "0.5", "fixed_epsilon": "tab:red", "robust_offset": "tab:blue",
-               "error_bounds": "tab:green"}
+    # robust_offset: the name of the Ray Tracing Gems row in CSV files from before issue 19
+    colours = {"no_offset": "0.5", "fixed_epsilon": "tab:red", "rtg_offset": "tab:blue", "robust_offset": "tab:blue",
+               "error_bounds": "tab:green", "light_visible": "tab:purple"}
+    styles = {"light_visible": "s--"}
     for method, colour in colours.items():
         pts = sorted((num(r["scale"]), num(r["acne_fraction"]), num(r["leak_fraction"])) for r in rows
                      if r["method"] == method)
         if not pts:
             continue
         label = {"no_offset": "no offset", "fixed_epsilon": "fixed epsilon 1e-4",
-                 "robust_offset": "Ray Tracing Gems ch. 6 offset (light_visible)",
-                 "error_bounds": "PBR error bounds (spawn_ray)"}.get(method, method)
-        axes[0].loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], "o-", color=colour, label=label)
-        axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], "o-", color=colour, label=label)
+                 "rtg_offset": "Ray Tracing Gems ch. 6 offset (offset_ray_origin)",
+                 "robust_offset": "Ray Tracing Gems ch. 6 offset (light_visible before issue 19)",
+                 "error_bounds": "PBR error bounds (spawn_ray)",
+                 "light_visible": "light_visible (spawn_ray_to)"}.get(method, method)
+        style = styles.get(method, "o-")
+        axes[0].loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], style, color=colour, label=label)
+        axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], style, color=colour, label=label)
     axes[0].set_title("acne: lit points wrongly in shadow")
     axes[1].set_title("leaks: shadowed points wrongly lit")
     for ax in axes:
