@@ -741,6 +741,11 @@ def plan_kit(root: Path, stages_to_strip: Set[int]) -> KitPlan:
     for rel, file_regions in by_file.items():
         text = (root / rel).read_text(encoding="utf-8")
         contents[rel] = strip_text(rel, text, file_regions, doc_of)
+    # The kit's README speaks to students: tools/kit/README.md (instructor-only)
+    # replaces the repository's, which describes the reference and the tools.
+    kit_readme = root / "tools" / "kit" / "README.md"
+    if kit_readme.is_file() and "README.md" in kept:
+        contents["README.md"] = kit_readme.read_text(encoding="utf-8")
     missing = sorted({r.stage for r in stripped if doc_of.get(r.stage) is None})
     return KitPlan(kept, left_out, stripped, solved, contents, missing)
 

@@ -31,13 +31,13 @@
 
 namespace rt {
 
-/// One linear channel to a byte: clamp to [0, 1], encode with a plain gamma
-/// (value^(1/gamma)), scale to 255 and round to nearest.
+/// One linear channel to a byte, the early stages' plain path: clamp to
+/// [0, 1] (NaN to 0), encode with a plain gamma (value^(1/gamma)), then the
+/// given nearest_byte_level.
 inline std::uint8_t to_byte(float linear, float gamma = 2.2f)
 {
-    const float clamped = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f; // NaN fails the test: 0
-    const float encoded = std::pow(clamped, 1.0f / gamma);
-    return std::uint8_t(encoded * 255.0f + 0.5f); // at most 255.5, truncated to 255
+    const float clamped = std::isnan(linear) ? 0.0f : std::clamp(linear, 0.0f, 1.0f);
+    return nearest_byte_level(std::pow(clamped, 1.0f / gamma));
 }
 
 /// The image as 8-bit RGB bytes, top row first (3 bytes a pixel).

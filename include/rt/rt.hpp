@@ -31,6 +31,7 @@
 #include "scene_loader.hpp"
 #include "shading.hpp"
 #include "shadows.hpp"
+#include "shadows_fixed_epsilon.hpp"
 #include "spawn.hpp"
 #include "sphere.hpp"
 #include "sphere_stable.hpp"

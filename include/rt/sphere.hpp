@@ -25,12 +25,16 @@
 namespace rt {
 
 /// The textbook quadratic, exactly as the course gives it: the nearest root t
-/// in [tmin, tmax]; fills the hit record (point, outward normal turned towards
-/// the ray, front_face, material) and leaves it untouched on a miss. Kept for
+/// in the closed interval [tmin, tmax] (the smaller root if it is inside, else
+/// the larger); on a hit, fills the record by calling the given
+/// fill_sphere_record(s, r, t, rec) (sphere_shape.hpp); on a miss returns false
+/// and leaves the record untouched. A ray with d = 0 misses. Kept for
 /// teaching and for comparison; the library uses hit_sphere.
 inline bool hit_sphere_textbook(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
     // RT_EXERCISE_BEGIN(stage03: ray-sphere intersection)
+    // Hint: solve the quadratic for the nearest root t in [tmin, tmax]; then the
+    //   given fill_sphere_record(s, r, t, rec) (sphere_shape.hpp) fills the record.
     const vec3& p = r.origin;
     const vec3& d = r.direction;
     const vec3& c = s.center;
@@ -48,15 +52,7 @@ inline bool hit_sphere_textbook(const sphere& s, const ray& r, real tmin, real t
         if (!(tmin <= t && t <= tmax))
             return false;
     }
-    rec.t = t;
-    rec.point = r.at(t);
-    const vec3 outward = (rec.point - c) / R; // the unit normal of a sphere (FCG sec. 4.4.1)
-    rec.front_face = glm::dot(d, outward) <= 0; // a tangent ray counts as hitting the outside
-    rec.geometric_normal = rec.front_face ? outward : -outward;
-    rec.normal = rec.geometric_normal;
-    rec.material = s.material;
-    rec.primitive = 0;
-    rec.b1 = rec.b2 = 0;
+    fill_sphere_record(s, r, t, rec); // given: point, normals, front_face, material
     return true;
     // RT_EXERCISE_END
 }

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <string>
 
+#include "hit_record.hpp"
+#include "ray.hpp"
 #include "rounding.hpp"
 #include "vec.hpp"
 
@@ -41,6 +43,31 @@ inline real smallest_sphere_radius(const vec3& c)
 inline bool sphere_fits_its_position(const sphere& s)
 {
     return std::isfinite(s.radius) && s.radius >= smallest_sphere_radius(s.center) && s.radius > 0;
+}
+
+/// Given (not an exercise): fills a sphere's hit record for the root t that an
+/// intersection found (FCG 4th ed., sec. 4.4.1): rec.t = t, rec.point = p + t d,
+/// the outward unit normal normalize(point - c) (unit length even where the
+/// computed point is an ulp off the surface; -d/|d| when the point rounds onto
+/// the centre), front_face = d . outward <= 0 (a tangent ray counts as hitting
+/// the outside), geometric_normal = normal = the outward normal turned to face
+/// the ray, the sphere's material, primitive = b1 = b2 = 0. rec.shape is left
+/// alone (the caller knows which shape it asked about). Both the stage-03
+/// exercise (sphere.hpp) and the library's hit_sphere (sphere_stable.hpp) call
+/// it once they have chosen their root.
+inline void fill_sphere_record(const sphere& s, const ray& r, real t, hit_record& rec)
+{
+    rec.t = t;
+    rec.point = r.at(t);
+    const vec3 local = rec.point - s.center;
+    const real length2 = glm::dot(local, local);
+    const vec3 outward = length2 > 0 && std::isfinite(length2) ? glm::normalize(local) : -glm::normalize(r.direction);
+    rec.front_face = glm::dot(r.direction, outward) <= 0;
+    rec.geometric_normal = rec.front_face ? outward : -outward;
+    rec.normal = rec.geometric_normal;
+    rec.material = s.material;
+    rec.primitive = 0;
+    rec.b1 = rec.b2 = 0;
 }
 
 namespace detail {

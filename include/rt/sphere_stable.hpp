@@ -73,12 +73,9 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
 }
 
 /// The library's default sphere intersection: the stable roots, the nearest in
-/// [tmin, tmax], and the hit record as hit_sphere_textbook fills it (untouched
-/// on a miss). The normal is normalize(point - c) rather than (point - c) / R,
-/// so it is unit length even where the computed point is an ulp off the
-/// surface; where the point rounds onto the centre (a sphere smaller than
-/// smallest_sphere_radius), it is -d / |d|, a unit normal facing the ray
-/// rather than NaN. (The scene-level intersection, intersect.hpp, then
+/// [tmin, tmax], and the hit record filled by fill_sphere_record
+/// (sphere_shape.hpp), as the stage-03 exercise fills it; untouched on a miss.
+/// (The scene-level intersection, intersect.hpp, then
 /// recomputes point and normal accurately: refine_sphere_hit.)
 inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
@@ -91,17 +88,7 @@ inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_
         if (!(tmin <= t && t <= tmax))
             return false;
     }
-    rec.t = t;
-    rec.point = r.at(t);
-    const vec3 local = rec.point - s.center;
-    const real length2 = glm::dot(local, local);
-    const vec3 outward = length2 > 0 && std::isfinite(length2) ? glm::normalize(local) : -glm::normalize(r.direction);
-    rec.front_face = glm::dot(r.direction, outward) <= 0;
-    rec.geometric_normal = rec.front_face ? outward : -outward;
-    rec.normal = rec.geometric_normal;
-    rec.material = s.material;
-    rec.primitive = 0;
-    rec.b1 = rec.b2 = 0;
+    fill_sphere_record(s, r, t, rec);
     return true;
 }
 
