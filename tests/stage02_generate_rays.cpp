@@ -240,15 +240,6 @@ TEST_CASE("PPM output: P6 header, then width * height * 3 bytes, clamped and gam
     CHECK(byte(2, 1, 0) == 128); // sqrt(0.25) * 255 = 127.5, rounded to nearest
 }
 
-TEST_CASE("to_byte: 0 and 1 are exact, NaN and negatives become 0")
-{
-    CHECK(rt::to_byte(0.0f) == 0);
-    CHECK(rt::to_byte(1.0f) == 255);
-    CHECK(rt::to_byte(-3.0f) == 0);
-    CHECK(rt::to_byte(std::nanf("")) == 0);
-    CHECK(rt::to_byte(0.5f, 1.0f) == 128);
-}
-
 TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no camera frame needed)")
 {
     // a tilted frame and an asymmetric window, so every term of eq. 4.1 shows

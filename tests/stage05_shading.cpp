@@ -184,12 +184,3 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
     check_color(below, 0, 0, 0);
 }
 
-TEST_CASE("the default material shades shapes without a material")
-{
-    rt::scene s = one_sphere_scene();
-    std::get<rt::sphere>(s.shapes[0]).material = -1;
-    s.lights.clear();
-    const rt::color L = shade_at(s, 0, 0);
-    const rt::color expected = s.default_material.ka * s.ambient;
-    check_color(L, expected.r, expected.g, expected.b);
-}
