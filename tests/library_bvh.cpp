@@ -5,7 +5,7 @@
 // hits as the flat list, on random rays, through closed meshes and on the
 // Stanford bunny when /work/shared/meshes holds it). No exercise is called:
 // the reference for the BVH is the library's flat list (accelerator_kind::flat).
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <array>
 #include <cmath>

@@ -3,7 +3,7 @@
 // samplers and filters, PFM files, and atomic writes (include/rt/image_io.hpp,
 // include/rt/atomic_file.hpp). Expected values are closed forms worked out by
 // hand in each case. No exercise is called.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <array>

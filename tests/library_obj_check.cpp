@@ -2,7 +2,7 @@
 // a mesh keeps only what its file gives, faces with negative indices and
 // polygons, MTL colours per face, the Cornell box, and malformed or missing
 // files as one-line errors with file:line:col. No exercise is called.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <array>
 #include <cmath>

@@ -1,7 +1,7 @@
 // library_offset.cpp - the robust ray origin of Wachter and Binder (Ray Tracing
 // Gems ch. 6, include/rt/offset.hpp) that stages 06 and 07 use: it lies on the
 // normal's side of the surface and moves the point a few ulps only.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -5,7 +5,7 @@
 // Tested with hand-made ray sources and analytic radiance functions (a
 // constant, a half-plane, a function of the film position); no exercise is
 // called.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <array>

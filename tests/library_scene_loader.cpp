@@ -3,7 +3,7 @@
 // materials and lights in file order, comments and quoted paths, a missing
 // file as a clear error. No exercise is called (these scenes state no camera
 // the tests look at, or none at all).
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <string>
 #include <variant>

@@ -1,7 +1,7 @@
 // library_shading.cpp - the library's shading around the stage-05 exercise:
 // shapes without a material are shaded with the default material. No exercise
 // is called.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 

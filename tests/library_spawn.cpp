@@ -3,7 +3,7 @@
 // the surface it left at any scale, while naive starts do; a sliver just in
 // front still blocks it; a ray leaving a sphere does not re-hit it. The
 // intersection is the library's (unmarked) watertight test and stable sphere.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <array>
 #include <cmath>

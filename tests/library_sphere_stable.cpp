@@ -15,7 +15,7 @@
 // formula (textbook_copy below), never the student's stage-03 exercise: a
 // student whose quadratic is more accurate than the textbook's is never
 // marked down for it, and this suite calls no exercise.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -510,4 +510,20 @@ TEST_CASE("sphere_roots_stable: ordered roots t0 <= t1 on the whole line, negati
     CHECK(t0 == 0);
     CHECK(t1 == 0);
     CHECK_FALSE(rt::sphere_roots_stable(s, rt::ray{rt::vec3(0, 2, 0), rt::vec3(0, 0, -1)}, t0, t1));
+}
+
+TEST_CASE("one ulp outside a sphere's silhouette the stable method misses, the textbook formula still hits")
+{
+    // The stable method sees h^2 = 1 + 2 ulp > R^2 and misses; in the textbook's
+    // discriminant 25 - ((h^2 + 25) - 1) the 2 ulp vanish next to 25, so it still
+    // reports the tangent hit (this file's copy of the formula, not the student's).
+    rt::sphere s;
+    s.center = rt::vec3(0, 0, -5);
+    const rt::ray one_ulp_out{rt::vec3(std::nextafter(real(1), infinity), 0, 0), rt::vec3(0, 0, -1)};
+    rt::hit_record rec;
+    CHECK_FALSE_MESSAGE(rt::hit_sphere(s, one_ulp_out, 0, infinity, rec), "expected the stable method to miss");
+    CHECK_MESSAGE(textbook_copy(s, one_ulp_out, 0, infinity, rec), "expected the textbook formula's tangent hit");
+    real t0 = 0, t1 = 0;
+    REQUIRE(rt::sphere_roots_stable(s, rt::ray{rt::vec3(1, 0, 0), rt::vec3(0, 0, -1)}, t0, t1));
+    CHECK(t0 == t1);
 }

@@ -1,7 +1,7 @@
 // library_to_byte.cpp - rt::to_byte (include/rt/image_io.hpp), the early stages'
 // conversion of a colour channel to a byte: 0 and 1 exact, NaN and negatives 0.
 // No exercise is called.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdint>

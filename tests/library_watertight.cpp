@@ -8,7 +8,7 @@
 // from the paper (moller_trumbore_copy below), never on the student's function,
 // so this suite calls no exercise and a student's more careful code is never
 // marked down.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <array>
 #include <cmath>

@@ -3,7 +3,7 @@
 // Every case builds its input here, from a string, so nothing of a later stage
 // can fail it. Error cases check the whole promise: one line, file:line:col,
 // what was expected, what was found.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <string>
 #include <variant>

@@ -3,7 +3,7 @@
 // Expected values are worked out by hand from Fundamentals of Computer
 // Graphics, 4th ed., sec. 4.3 (eq. 4.1 and the two projections); cameras are
 // built here, not loaded, so a stage-01 bug cannot fail these cases.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdint>

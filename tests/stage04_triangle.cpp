@@ -11,7 +11,7 @@
 //
 // Only stage-04 exercises (Moller-Trumbore, closest_hit_list) and unmarked
 // library code are called: scenes, meshes and rays are built here.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <array>
 #include <cmath>

@@ -6,7 +6,7 @@
 // unit sphere, an orthographic view along -z). Rays and scenes are made here:
 // nothing of stages 01, 02 or 04 is called, only the library's stable sphere
 // intersection (unmarked) and this stage's shading.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 

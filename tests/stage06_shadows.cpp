@@ -8,7 +8,7 @@
 // tangent cone's half angle a with sin a = R / (H - C), and the shadow radius
 // on the plane is H tan a. Scenes and rays are built here; the intersection is
 // the library's (unmarked) accelerator.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdio>

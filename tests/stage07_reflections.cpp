@@ -4,7 +4,7 @@
 // The scenes here have no lights, only ambient light, so every colour is a
 // closed form (ka Ia, km ka Ia, a geometric series) and nothing of stage 05's
 // or 06's exercises is called. Scenes and rays are built here.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -7,7 +7,7 @@
 // with hand-made ray sources and analytic radiance functions (a constant, a
 // half-plane, a function of the film position), never with another stage's
 // code, so these cases test stage 08 alone.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <array>
