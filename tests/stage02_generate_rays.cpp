@@ -96,6 +96,8 @@ TEST_CASE("orthographic rays of pixel (0,0), the centre pixel and the last pixel
     // u = -2 + 4 (i + 0.5) / 4 = i - 1.5,  v = -1 + 2 (j + 0.5) / 2 = j - 0.5.
     const rt::ray_generator gen = rt::make_ray_generator(looking_down_minus_z(rt::projection::orthographic), 4, 2);
     const rt::ray first = rt::pixel_ray(gen, 0, 0);
+    INFO("pixel (0, 0) is the bottom-left pixel: x counts columns from the left, y rows from the bottom "
+         "(FCG 4th ed., sec. 4.3.1), so its ray starts at u = -1.5, v = -0.5; v = +0.5 means rows counted from the top");
     check_near(first.origin, {-1.5, -0.5, 0});
     check_near(first.direction, {0, 0, -1});
     const rt::ray last = rt::pixel_ray(gen, 3, 1);
@@ -110,6 +112,7 @@ TEST_CASE("perspective rays of pixel (0,0), the centre pixel and the last pixel,
     // same window, d = 1: direction = u u + v v - d w = (u, v, -1)
     const rt::ray_generator gen = rt::make_ray_generator(looking_down_minus_z(rt::projection::perspective), 4, 2);
     const rt::ray first = rt::pixel_ray(gen, 0, 0);
+    INFO("pixel (0, 0) is the bottom-left pixel (rows counted from the bottom): its direction is (-1.5, -0.5, -1)");
     check_near(first.origin, {0, 0, 0});
     check_near(first.direction, {-1.5, -0.5, -1});
     const rt::ray last = rt::pixel_ray(gen, 3, 1);

@@ -102,9 +102,11 @@ TEST_CASE("Reinhard tone map x / (1 + x) at known points")
     CHECK(rt::tonemap_reinhard(3.0f) == doctest::Approx(0.75)); // 3 / 4
     CHECK(rt::tonemap_reinhard(0.25f) == doctest::Approx(0.2)); // (1/4) / (5/4)
     CHECK(rt::tonemap_reinhard(99.0f) == doctest::Approx(0.99));
-    CHECK(rt::tonemap_reinhard(std::numeric_limits<float>::infinity()) == 1.0f); // the limit, not inf/inf
-    CHECK(rt::tonemap_reinhard(-1.0f) == 0.0f);
-    CHECK(rt::tonemap_reinhard(std::nanf("")) == 0.0f);
+    CHECK_MESSAGE(rt::tonemap_reinhard(std::numeric_limits<float>::infinity()) == 1.0f,
+                  "expected T(inf) = 1, the limit of x / (1 + x); computed as written, inf / inf is NaN (a black pixel): "
+                  "return 1 for an infinite x");
+    CHECK_MESSAGE(rt::tonemap_reinhard(-1.0f) == 0.0f, "expected 0 for x <= 0 (no negative light); x / (1 + x) at -1 divides by 0");
+    CHECK_MESSAGE(rt::tonemap_reinhard(std::nanf("")) == 0.0f, "expected 0 for a NaN sample (a black pixel, not NaN bytes)");
     // increasing and below 1 everywhere
     float previous = 0;
     for (float x = 0.01f; x < 1000; x *= 1.1f) {
