@@ -191,6 +191,8 @@ TEST_CASE("a default-window camera: fov gives the vertical extent, the image the
 
 TEST_CASE("direction to colour maps [-1, 1] to [0, 1] per channel of the unit direction")
 {
+    INFO("the colour is (d / |d| + 1) / 2: normalise the direction first; (5, 0, 0) is the unit direction (1, 0, 0) "
+         "and gives red 1, not (5 + 1) / 2 = 3");
     const rt::color right = rt::direction_to_color({5, 0, 0});
     CHECK(right.r == doctest::Approx(1));
     CHECK(right.g == doctest::Approx(0.5));
