@@ -23,7 +23,7 @@
 // variable RT_REINTERSECT_RAYS sets the rays per shape (RT_REINTERSECT_SHAPES
 // the shapes). The tables are printed with MESSAGE; docs/stages/06-shadows.md
 // shows them.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // the robust orientation test, and the promise that every simple polygon,
 // convex or concave, in any plane, gives n - 2 triangles inside it whose
 // areas add up to its area.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <cmath>

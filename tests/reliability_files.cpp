@@ -5,7 +5,7 @@
 // (RT_STAGE_DIR, set by tests/CMakeLists.txt) in a scratch folder and check the
 // exit code, the one line on stderr, and that every file there is byte for byte
 // what it was. docs/reliability.md lists what is promised and which test shows it.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -6,7 +6,7 @@
 // is one short line of text, "file:line[:col]: expected X, found Y; hint",
 // never another exception, a crash or a hang. No case here writes a camera
 // line or calls an exercise, so a student kit passes these cases unchanged.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -6,7 +6,7 @@
 // unit sphere, an orthographic view along -z). Rays and scenes are made here:
 // nothing of stages 01, 02 or 04 is called, only the library's stable sphere
 // intersection (unmarked) and this stage's shading.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 
@@ -64,6 +64,21 @@ void check_color(const rt::color& got, double r, double g, double b, double eps 
 }
 
 } // namespace
+
+TEST_CASE("blinn_phong where h = n: the highlight is ks I exactly, so h = (v + l) / |v + l| must be a unit vector")
+{
+    // FCG 4th ed., sec. 4.5.2: L = kd I max(0, n.l) + ks I max(0, n.h)^p with the unit
+    // half vector h = (v + l) / |v + l|. Here v and l are unit vectors and n = h.
+    const rt::material m = test_material();
+    const rt::color I(1.0f, 0.9f, 0.8f);
+    const rt::vec3 v(0, 0, 1), l = glm::normalize(rt::vec3(1, 0, 1)), n = glm::normalize(v + l);
+    const double nl = double(glm::dot(n, l)); // cos 22.5 degrees
+    const rt::color L = rt::blinn_phong(m, n, v, l, I);
+    INFO("n = h: n.h = 1, so the specular term is ks I = (0.4, 0.36, 0.32); with h = v + l unnormalised n.h = |v + l| = "
+         << double(glm::length(v + l)) << " and the highlight is " << std::pow(double(glm::length(v + l)), 20)
+         << " times too bright: normalise the half vector");
+    check_color(L, 0.7 * 1.0 * nl + 0.4 * 1.0, 0.5 * 0.9 * nl + 0.4 * 0.9, 0.3 * 0.8 * nl + 0.4 * 0.8, 1e-5);
+}
 
 TEST_CASE("one sphere, one directional light, orthographic view: pixels equal the formula by hand")
 {
@@ -184,12 +199,3 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
     check_color(below, 0, 0, 0);
 }
 
-TEST_CASE("the default material shades shapes without a material")
-{
-    rt::scene s = one_sphere_scene();
-    std::get<rt::sphere>(s.shapes[0]).material = -1;
-    s.lights.clear();
-    const rt::color L = shade_at(s, 0, 0);
-    const rt::color expected = s.default_material.ka * s.ambient;
-    check_color(L, expected.r, expected.g, expected.b);
-}

@@ -4,7 +4,7 @@
 // The scenes here have no lights, only ambient light, so every colour is a
 // closed form (ka Ia, km ka Ia, a geometric series) and nothing of stage 05's
 // or 06's exercises is called. Scenes and rays are built here.
-#include <doctest/doctest.h>
+#include "rt_doctest.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -131,6 +131,9 @@ TEST_CASE("a mirror ball reflects the background where its reflections escape")
     s.shapes.emplace_back(ball);
     const rt::accelerator accel(s);
     // a ray hitting the front of the ball comes back out: 0.8 * background
+    INFO("expected km * background = 0.8 * (0.25, 0.5, 1): the reflected ray leaves the ball and sees the sky; "
+         "a darker colour (0.8^k * background) means the reflected ray hit the ball again: "
+         "start it off the surface (rt::spawn_ray), not at the hit point");
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0.3f, 0.4f, 5), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
     // a miss is the background itself
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(3, 0, 5), rt::vec3(0, 0, -1)}), 0.25, 0.5, 1.0);
@@ -155,4 +158,56 @@ TEST_CASE("two facing mirrors: exactly 1 + max_depth closest-hit queries")
         CAPTURE(D);
         CHECK(queries == std::uint64_t(D + 1));
     }
+}
+
+TEST_CASE("a mirror ball far from the origin reflects only the sky: no speckles of its own surface (the reflected ray starts off the surface)")
+{
+    // A mirror ball (ka = 0, km = 0.5) alone under a sky: every ray that hits it
+    // reflects away from it (the reflected ray leaves a convex surface) and sees
+    // the sky, so each such pixel is exactly km times the background. A reflected
+    // ray started at the computed hit point itself, which lies a rounding error
+    // inside or outside the surface, finds the ball again at t ~ 0 for some rays
+    // (Pharr, Jakob, Humphreys, PBR 3rd ed., sec. 3.9.5): a speckle. The ball is
+    // placed where its coordinates are large, where the rounding shows.
+    const rt::color km(0.5f), sky(0.2f, 0.4f, 0.8f);
+    int speckles_total = 0;
+    for (const double scale : {1.0, 1e2, 1e4}) {
+        rt::scene s;
+        s.ambient = rt::color(1.0f);
+        s.background = sky;
+        s.max_depth = 5;
+        s.materials.push_back(ambient_material(rt::color(0.0f), km));
+        rt::sphere ball;
+        ball.center = rt::real(scale) * rt::vec3(0.6f, -0.48f, 0.64f) * rt::real(3);
+        ball.radius = rt::real(scale);
+        ball.material = 0;
+        s.shapes.emplace_back(ball);
+        const rt::accelerator accel(s);
+        const rt::vec3 eye = ball.center + rt::vec3(0, 0, rt::real(4 * scale));
+        int rays = 0, speckles = 0;
+        const int n = 40;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                // aim at the visible cap, within 0.9 R of the axis
+                const rt::real u = rt::real(0.9) * (rt::real(2 * i + 1) / rt::real(n) - 1);
+                const rt::real v = rt::real(0.9) * (rt::real(2 * j + 1) / rt::real(n) - 1);
+                if (u * u + v * v > rt::real(0.81))
+                    continue;
+                const rt::vec3 target = ball.center + ball.radius * rt::vec3(u, v, std::sqrt(1 - u * u - v * v));
+                const rt::color L = rt::ray_color(s, accel, rt::ray{eye, target - eye});
+                ++rays;
+                const rt::color want = km * sky;
+                const bool exact = std::fabs(L.r - want.r) <= 1e-5f && std::fabs(L.g - want.g) <= 1e-5f &&
+                                   std::fabs(L.b - want.b) <= 1e-5f;
+                speckles += exact ? 0 : 1;
+            }
+        CAPTURE(scale);
+        CAPTURE(rays);
+        CHECK_MESSAGE(speckles == 0, "expected every pixel of the mirror ball to be km * background = "
+                                         << doctest::toString(km * sky) << "; " << speckles << " of " << rays
+                                         << " rays saw the ball itself again: start the reflected ray off the "
+                                            "surface (rt::spawn_ray or rt::offset_ray_origin), not at the hit point");
+        speckles_total += speckles;
+    }
+    CHECK(speckles_total == 0);
 }

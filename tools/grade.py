@@ -33,7 +33,6 @@ library only.
 from __future__ import annotations
 
 import argparse
-import hashlib
 import io
 import json
 import os
@@ -369,18 +368,16 @@ class Suite:
     def label(self) -> str:
         return f"stage{self.stage:02d}" + (".hidden" if self.hidden else "")
 
-    free: set = field(default_factory=set)  # cases that pass with every exercise stripped
-
     @property
     def passed(self) -> int:
         return sum(c.status == "passed" for c in self.cases)
 
     @property
     def graded_cases(self) -> List[Case]:
-        """The cases that measure the student's work: those the stripped reference fails
-        (all cases, when every one of them passes stripped)."""
-        counted = [c for c in self.cases if c.name not in self.free]
-        return counted if counted else self.cases
+        """The cases that measure the student's work: every case of a stage suite, since a
+        stage suite holds only tests of its exercises (the library's own tests are in the
+        tests/library_*.cpp suites, which are never graded)."""
+        return self.cases
 
     @property
     def points(self) -> float:
@@ -494,48 +491,6 @@ def build_and_run(src: Path, build: Path, hidden: Path, suites: List[Suite], wei
             s.cases.append(case)
 
 
-def baseline_key(plan: make_kit.KitPlan, reference: Path, hidden: Optional[Path]) -> str:
-    digest = hashlib.sha256()
-    for rel in sorted(plan.files):
-        digest.update(rel.encode("utf-8") + b"\0")
-        digest.update(plan.contents[rel].encode("utf-8") if rel in plan.contents else (reference / rel).read_bytes())
-    if hidden is not None:
-        for f in sorted(hidden.rglob("*")):
-            if f.is_file():
-                digest.update(f.relative_to(hidden).as_posix().encode("utf-8") + b"\0" + f.read_bytes())
-    return digest.hexdigest()[:20]
-
-
-def baseline(plan: make_kit.KitPlan, reference: Path, hidden_dir: Optional[Path], weights: Weights,
-             args: argparse.Namespace, work: Path) -> Dict[str, List[str]]:
-    """The cases that pass with every exercise stripped, per suite label: they do not
-    measure the student's work and carry no points. Cached in --cache DIR when given."""
-    cache_file = None
-    if args.cache:
-        cache_file = Path(args.cache) / f"baseline-{baseline_key(plan, reference, hidden_dir)}.json"
-        if cache_file.is_file():
-            try:
-                return json.loads(cache_file.read_text(encoding="utf-8"))["free"]
-            except (ValueError, KeyError):
-                pass
-    log("grade: running the stripped reference once, to find the cases that pass without any exercise")
-    src = work / "baseline-src"
-    shutil.rmtree(src, ignore_errors=True)
-    make_kit.write_tree(reference, plan, src)
-    suites = make_suites(reference, weights, hidden_dir)
-    build_and_run(src, work / "baseline-build", work / "hidden", suites, weights, args, [str(src), str(work)])
-    broken = [s.label for s in suites if s.build_error]
-    if broken:
-        raise GradeError("the stripped reference does not build (" + ", ".join(broken) + "): "
-                         + next(s.build_error for s in suites if s.build_error))
-    free = {s.label: sorted(c.name for c in s.cases if c.status == "passed") for s in suites}
-    if cache_file is not None:
-        write_atomically(cache_file, (json.dumps({"free": free}, indent=1) + "\n").encode("utf-8"))
-    shutil.rmtree(src, ignore_errors=True)
-    shutil.rmtree(work / "baseline-build", ignore_errors=True)
-    return free
-
-
 def grade(args: argparse.Namespace) -> Tuple[List[Suite], str, Weights]:
     """Grades the submission; returns the suites, a note for the whole submission and the weights."""
     reference = Path(args.reference).resolve()
@@ -566,11 +521,8 @@ def grade(args: argparse.Namespace) -> Tuple[List[Suite], str, Weights]:
         plan = make_kit.plan_kit(reference, set(stages))
     except make_kit.KitError as e:
         raise GradeError("the reference's exercise markers are invalid:\n" + "\n".join(e.messages))
-    free = baseline(plan, reference, hidden_dir, weights, args, work)
     if args.calibrate:
-        return suites, "baseline: " + ", ".join(f"{k}: {len(v)} free" for k, v in sorted(free.items())), weights
-    for s in suites:
-        s.free = set(free.get(s.label, []))
+        return suites, "nothing to calibrate: every case of a stage suite tests an exercise", weights
 
     # the submission's headers over a stripped copy of the reference
     reference_headers = [Path(f).name for f in plan.files if f.startswith("include/rt/")]
@@ -597,8 +549,8 @@ def grade(args: argparse.Namespace) -> Tuple[List[Suite], str, Weights]:
 # --------------------------------------------------------------------------
 
 def table(suites: List[Suite]) -> str:
-    """One row per suite: its cases, how many passed, the scored cases (those the
-    stripped reference fails) passed out of their number, and the points."""
+    """One row per suite: its cases, how many passed, the scored cases passed out of
+    their number, and the points."""
     rows = [("stage", "suite", "cases", "passed", "scored", "points", "")]
     for s in suites:
         if s.build_error:
@@ -725,9 +677,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--build-timeout", type=float, default=600, help="seconds for configuring or one build")
     parser.add_argument("--memory-mb", type=int, default=4096, help="address-space limit per test case (0: none)")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--cache", help="folder caching the stripped reference's results between runs")
+    # No baseline is needed any more (a stage suite tests only its exercises): --cache and
+    # --calibrate are accepted so that existing scripts (tools/gradescope) keep working.
+    parser.add_argument("--cache", help="accepted and unused (there is no stripped-reference baseline to cache)")
     parser.add_argument("--calibrate", action="store_true",
-                        help="only run the stripped reference and fill --cache (e.g. in Gradescope's setup.sh)")
+                        help="accepted for old setup scripts: checks the reference's markers and exits")
     args = parser.parse_args(argv if argv is not None else None)
     if args.calibrate and not args.cache:
         parser.error("--calibrate needs --cache DIR")

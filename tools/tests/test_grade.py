@@ -134,18 +134,18 @@ class Submissions(unittest.TestCase):
 
 
 class Reports(unittest.TestCase):
-    def suite(self, statuses, free=(), max_points=10, build_error=""):
+    def suite(self, statuses, max_points=10, build_error=""):
         s = grade.Suite(3, False, "sphere", max_points, ["test_stage03_sphere"], build_error=build_error)
         s.cases = [grade.Case(f"case {k}", status) for k, status in enumerate(statuses)]
-        s.free = {f"case {k}" for k in free}
         return s
 
-    def test_points_count_only_the_cases_the_stripped_reference_fails(self):
-        # cases 0 and 1 pass without any exercise: they carry no points
-        self.assertEqual(self.suite(["passed", "passed", "failed", "failed"], free=(0, 1)).points, 0)
-        self.assertEqual(self.suite(["passed", "passed", "passed", "failed"], free=(0, 1)).points, 5)
-        self.assertEqual(self.suite(["passed", "timeout", "passed"], free=()).points, 6.67)
-        self.assertEqual(self.suite(["passed", "passed"], free=(0, 1)).points, 10)  # nothing to strip
+    def test_points_are_the_fraction_of_the_stage_cases_passed(self):
+        # every case of a stage suite tests an exercise: each carries its share of the points
+        self.assertEqual(self.suite(["passed", "passed", "failed", "failed"]).points, 5)
+        self.assertEqual(self.suite(["passed", "passed", "passed", "failed"]).points, 7.5)
+        self.assertEqual(self.suite(["passed", "timeout", "passed"]).points, 6.67)
+        self.assertEqual(self.suite(["passed", "passed"]).points, 10)
+        self.assertEqual(self.suite([]).points, 0)
         self.assertEqual(self.suite(["passed"], build_error="x.hpp:1:1: error: boom").points, 0)
 
     def test_gradescope_results(self):
@@ -246,7 +246,7 @@ FIXTURE_TESTS = {
         #include <doctest/doctest.h>
         #include <rt/fx.hpp>
         TEST_CASE("two and three make five") { CHECK(rt::add(2, 3) == 5); }
-        TEST_CASE("arithmetic without the exercise") { CHECK(1 + 1 == 2); }
+        TEST_CASE("minus two and two make zero") { CHECK(rt::add(-2, 2) == 0); }
     """,
     "tests/stage02_deref.cpp": """
         #include <doctest/doctest.h>
@@ -319,7 +319,7 @@ class EndToEnd(unittest.TestCase):
 
     def test_a_crash_and_a_hang_cost_only_their_own_stage(self):
         tests, results = self.grade(self.student(STUDENT_HEADER, "student"), "out-student")
-        self.assertEqual(tests["Stage 01"]["score"], 10)   # the free case carries no points
+        self.assertEqual(tests["Stage 01"]["score"], 10)   # no baseline: both cases test the exercise
         self.assertEqual(tests["Stage 01 hidden"]["score"], 5)
         self.assertEqual(tests["Stage 02"]["score"], 5)    # one crash of two
         self.assertIn("crashed", tests["Stage 02"]["output"])

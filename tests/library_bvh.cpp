@@ -1,0 +1,550 @@
+// library_bvh.cpp - the library's accelerator (include/rt/bvh.hpp,
+// include/rt/intersect.hpp): the slab test with Ize's factor (Ize, "Robust BVH
+// ray traversal", JCGT 2013), BVH build (the same tree for any thread count,
+// spatial splits that never cut a triangle's piece) and traversal (the same
+// hits as the flat list, on random rays, through closed meshes and on the
+// Stanford bunny when /work/shared/meshes holds it). No exercise is called:
+// the reference for the BVH is the library's flat list (accelerator_kind::flat).
+#include "rt_doctest.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <rt/bvh.hpp>
+#include <rt/intersect.hpp>
+#include <rt/obj_loader.hpp>
+#include <rt/offset.hpp>
+#include <rt/spawn.hpp>
+#include <rt/triangle.hpp>
+
+namespace {
+
+using rt::real;
+using rt::vec3;
+
+constexpr bool in_float = std::is_same_v<real, float>;
+const real tol = in_float ? real(1e-5) : real(1e-12);
+
+bool near(real got, real want, real eps = tol)
+{
+    return std::fabs(got - want) <= eps * std::max(real(1), std::fabs(want));
+}
+
+// --- meshes built here ------------------------------------------------------
+
+/// A unit icosahedron subdivided `levels` times (each triangle into four, the
+/// new corners pushed onto the sphere), then scaled and moved. Corners shared
+/// by neighbouring triangles are one index, so the mesh is closed; every face
+/// is counter-clockwise seen from outside.
+rt::mesh icosphere(int levels, const vec3& center, real radius)
+{
+    const double g = (1 + std::sqrt(5.0)) / 2;
+    std::vector<std::array<double, 3>> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<rt::index3> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    auto unit = [](std::array<double, 3> v) {
+        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        return std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l};
+    };
+    for (auto& v : p)
+        v = unit(v);
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
+        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            const auto found = middle.find(key);
+            if (found != middle.end())
+                return found->second;
+            p.push_back(unit({p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]}));
+            const auto index = std::uint32_t(p.size() - 1);
+            middle[key] = index;
+            return index;
+        };
+        std::vector<rt::index3> finer;
+        for (const rt::index3& f : faces) {
+            const std::uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            finer.push_back({f[0], ab, ca});
+            finer.push_back({f[1], bc, ab});
+            finer.push_back({f[2], ca, bc});
+            finer.push_back({ab, bc, ca});
+        }
+        faces = finer;
+    }
+    rt::mesh m;
+    for (const auto& v : p)
+        m.positions.push_back(center + radius * vec3(real(v[0]), real(v[1]), real(v[2])));
+    for (rt::index3 f : faces) { // make every face counter-clockwise seen from outside
+        const vec3 a = m.positions[f[0]] - center, b = m.positions[f[1]] - center, c = m.positions[f[2]] - center;
+        if (glm::dot(glm::cross(b - a, c - a), a + b + c) < 0)
+            std::swap(f[1], f[2]);
+        m.triangles.push_back(f);
+    }
+    return m;
+}
+
+rt::mesh cube_from_file()
+{
+    return rt::load_obj(RT_TEST_DATA_DIR "/cube.obj").geometry;
+}
+
+rt::scene scene_of(rt::mesh m)
+{
+    rt::scene s;
+    s.shapes.emplace_back(std::move(m));
+    return s;
+}
+
+rt::aabb bounds_of(const rt::mesh& m)
+{
+    rt::aabb box;
+    for (const vec3& p : m.positions)
+        box.grow(p);
+    return box;
+}
+
+/// Targets on a closed mesh's surface that rays from inside are aimed at,
+/// each with the triangles it lies on: every vertex (its fan), every edge's
+/// midpoint and seven points along it (the edge's two triangles).
+struct surface_target {
+    vec3 point;
+    std::vector<std::size_t> triangles;
+};
+
+std::vector<surface_target> vertex_and_edge_targets(const rt::mesh& m)
+{
+    std::vector<surface_target> targets(m.positions.size());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        const rt::index3& f = m.triangles[i];
+        for (int k = 0; k < 3; ++k) {
+            targets[f[std::size_t(k)]].triangles.push_back(i);
+            const std::uint32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+            edges[{std::min(a, b), std::max(a, b)}].push_back(i);
+        }
+    }
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        targets[v].point = m.positions[v];
+    for (const auto& [edge, triangles] : edges) {
+        const vec3 a = m.positions[edge.first], b = m.positions[edge.second];
+        targets.push_back({(a + b) * real(0.5), triangles});
+        for (int k = 1; k < 8; ++k)
+            if (k != 4)
+                targets.push_back({a + (real(k) / 8) * (b - a), triangles});
+    }
+    return targets;
+}
+
+// --- files written by the OBJ tests ---------------------------------------------
+
+} // namespace
+
+// =============================================================================
+// One triangle, worked out by hand
+// =============================================================================
+
+namespace {
+
+/// A random scene: spheres, single triangles (some sharing edges, in a grid)
+/// and meshes, as asked.
+rt::scene random_scene(std::mt19937& random, int spheres, int triangles, bool meshes)
+{
+    std::uniform_real_distribution<real> pos(-5, 5), size(real(0.05), 1), unit(-1, 1);
+    rt::scene s;
+    for (int k = 0; k < spheres; ++k) {
+        rt::sphere ball;
+        ball.center = vec3(pos(random), pos(random), pos(random));
+        ball.radius = size(random);
+        ball.material = k % 3;
+        s.shapes.emplace_back(ball);
+        if (k % 5 == 0 && triangles > 0) { // interleave kinds in the shape list
+            const vec3 c(pos(random), pos(random), pos(random));
+            s.shapes.emplace_back(rt::triangle{c, c + vec3(unit(random), unit(random), unit(random)),
+                                               c + vec3(unit(random), unit(random), unit(random)), 1});
+            --triangles;
+        }
+    }
+    for (int k = 0; k < triangles; ++k) {
+        if (k < 64) { // an 8 x 4 grid of squares as separate triangles, sharing edges and corners
+            const real x = real(k % 8) - 4, y = real(k / 8) - 2;
+            const vec3 p00(x, y, 0), p10(x + 1, y, 0), p01(x, y + 1, 0), p11(x + 1, y + 1, 0);
+            s.shapes.emplace_back(k % 2 == 0 ? rt::triangle{p00, p10, p11, 2} : rt::triangle{p00, p11, p01, 2});
+            continue;
+        }
+        const vec3 c(pos(random), pos(random), pos(random));
+        const real r = size(random);
+        s.shapes.emplace_back(rt::triangle{c + r * vec3(unit(random), unit(random), unit(random)),
+                                           c + r * vec3(unit(random), unit(random), unit(random)),
+                                           c + r * vec3(unit(random), unit(random), unit(random)), -1});
+    }
+    if (meshes) {
+        s.shapes.emplace_back(icosphere(2, vec3(1, 1.5f, -2), real(1.2)));
+        rt::mesh box = cube_from_file();
+        for (vec3& p : box.positions)
+            p = p * real(2) + vec3(-2, 1, 2);
+        box.face_materials.assign(box.triangles.size(), 1);
+        s.shapes.emplace_back(std::move(box));
+    }
+    return s;
+}
+
+/// Random rays through the scene's region, some with unit, some with long or
+/// short directions, some axis-parallel (with -0) and some aimed at grid corners.
+std::vector<rt::ray> random_rays(std::mt19937& random, int count)
+{
+    std::uniform_real_distribution<real> pos(-7, 7), unit(-1, 1);
+    std::vector<rt::ray> rays;
+    for (int k = 0; k < count; ++k) {
+        rt::ray r;
+        r.origin = vec3(pos(random), pos(random), pos(random));
+        switch (k % 5) {
+        case 0:
+            r.direction = glm::normalize(vec3(unit(random), unit(random), unit(random)));
+            break;
+        case 1:
+            r.direction = vec3(unit(random), unit(random), unit(random)) * real(37);
+            break;
+        case 2: { // axis-parallel, any sign of zero
+            const int axis = k % 3;
+            r.direction = vec3(k % 7 < 3 ? real(0) : -real(0));
+            r.direction[axis] = unit(random) < 0 ? -1 : 1;
+            break;
+        }
+        case 3: { // at a corner of the grid
+            const vec3 corner(real(k % 9) - 4, real(k % 5) - 2, 0);
+            r.direction = corner - r.origin;
+            break;
+        }
+        default:
+            r.direction = vec3(unit(random), unit(random), unit(random)) * real(0.01);
+        }
+        if (glm::dot(r.direction, r.direction) == 0)
+            r.direction = vec3(1, 0, 0);
+        rays.push_back(r);
+    }
+    return rays;
+}
+
+bool same_hit(const rt::hit_record& a, const rt::hit_record& b)
+{
+    return a.t == b.t && a.shape == b.shape && a.primitive == b.primitive && a.material == b.material &&
+           a.point == b.point && a.normal == b.normal && a.geometric_normal == b.geometric_normal &&
+           a.front_face == b.front_face && a.b1 == b.b1 && a.b2 == b.b2 && a.point_error == b.point_error;
+}
+
+} // namespace
+
+TEST_CASE("the slab test handles axis-parallel rays, rays in a slab plane, -0 and flat boxes without NaN")
+{
+    rt::aabb box;
+    box.lo = vec3(-1, -1, -1);
+    box.hi = vec3(1, 2, 3);
+    const real zero = 0, minus_zero = -real(0);
+    real tnear = -1;
+    auto hits = [&](const vec3& o, const vec3& d, real tmin = 0, real tmax = rt::infinity) {
+        tnear = std::numeric_limits<real>::quiet_NaN();
+        const bool hit = rt::hit_box(box, rt::make_box_ray(rt::ray{o, d}), tmin, tmax, tnear);
+        CHECK_FALSE(std::isnan(tnear));
+        return hit;
+    };
+    // axis-parallel, through the box, and beside it
+    CHECK(hits({-5, 0, 0}, {1, zero, zero}));
+    CHECK(tnear == 4);
+    CHECK_FALSE(hits({-5, 2.5f, 0}, {1, zero, zero}));
+    CHECK_FALSE(hits({-5, 0, 0}, {-1, zero, zero})); // pointing away
+    // in a slab plane (origin on the plane, direction inside it): the box is closed
+    CHECK(hits({-5, 2, 0}, {1, zero, zero}));
+    CHECK(tnear == 4);
+    CHECK(hits({-5, -1, 0}, {1, zero, zero}));
+    CHECK(hits({-5, 2, 0}, {1, minus_zero, zero}));
+    CHECK(hits({-5, -1, 0}, {1, minus_zero, minus_zero}));
+    CHECK(hits({-5, 2, 3}, {1, minus_zero, zero})); // along an edge
+    CHECK(hits({1, 2, 3}, {minus_zero, minus_zero, -1})); // down an edge from a corner
+    CHECK(tnear == 0);
+    // just outside a plane, parallel to it: a miss
+    CHECK_FALSE(hits({-5, std::nextafter(real(2), real(3)), 0}, {1, zero, zero}));
+    CHECK_FALSE(hits({-5, std::nextafter(real(-1), real(-2)), 0}, {1, minus_zero, zero}));
+    // a flat box (lo = hi on y), met only in its plane or across it
+    box.lo.y = box.hi.y = real(0.5);
+    CHECK(hits({-5, 0.5f, 0}, {1, zero, zero}));
+    CHECK(hits({0, 5, 0}, {zero, -1, zero}));
+    CHECK(tnear == real(4.5));
+    CHECK_FALSE(hits({-5, 0.6f, 0}, {1, zero, zero}));
+    // the interval: an origin inside enters at tmin; tmax before the box, tmin after it
+    box.lo = vec3(-1);
+    box.hi = vec3(1);
+    CHECK(hits({0, 0, 0}, {1, 1, 1}, real(0.25)));
+    CHECK(tnear == real(0.25));
+    CHECK_FALSE(hits({-5, 0, 0}, {1, 0, 0}, 0, 3));
+    CHECK_FALSE(hits({-5, 0, 0}, {1, 0, 0}, 7));
+    // the empty box (lo = +inf, hi = -inf) is met by nothing
+    box = rt::aabb{};
+    CHECK_FALSE(hits({0, 0, 0}, {1, 0, 0}));
+    CHECK_FALSE(hits({0, 0, 0}, {zero, minus_zero, 1}));
+}
+
+TEST_CASE("without Ize's factor the slab test culls boxes that a ray touches at an edge, with it never")
+{
+    // The ray passes exactly through the edge x = 1, y = 0 of the box [0,1]^3
+    // (at z = 1/2): it leaves the x slab where it enters the y slab, so the exact
+    // t_near equals t_far. Directions with integer components a, b, c and the
+    // origin P - s d make everything exact except the rounded 1/d.
+    rt::aabb box;
+    box.lo = vec3(0);
+    box.hi = vec3(1);
+    std::size_t rays = 0, culled_plain = 0, culled_ize = 0;
+    for (int a = 1; a <= 31; ++a)
+        for (int b = 1; b <= 31; ++b)
+            for (int c = -3; c <= 3; ++c)
+                for (int s = 1; s <= 5; ++s) {
+                    const vec3 d{real(a), real(b), real(c)};
+                    const vec3 o = vec3(1, 0, 0.5f) - real(s) * d;
+                    const rt::box_ray r = rt::make_box_ray(rt::ray{o, d});
+                    real tnear = 0;
+                    ++rays;
+                    culled_plain += rt::hit_box(box, r, 0, rt::infinity, tnear, 1) ? 0 : 1;
+                    culled_ize += rt::hit_box(box, r, 0, rt::infinity, tnear) ? 0 : 1;
+                }
+    MESSAGE(rays << " rays through a box edge: culled without the factor " << culled_plain
+                 << ", with 1 + 2 gamma_3 " << culled_ize);
+    CHECK(culled_ize == 0);
+    if (in_float)
+        CHECK(culled_plain > 0); // in double these rays happen to round the same on both planes
+
+}
+
+TEST_CASE("the BVH is the same whatever the number of threads that build it")
+{
+    std::mt19937 random(5);
+    const rt::scene s = random_scene(random, 2000, 6000, true); // large enough to be split among threads
+    for (const bool spatial : {false, true}) {
+        CAPTURE(spatial);
+        rt::bvh_options one, four;
+        one.threads = 1;
+        four.threads = 4;
+        if (spatial) { // forced everywhere, so that the threads share the top of the tree
+            one.spatial_budget = four.spatial_budget = 1;
+            one.spatial_overlap = four.spatial_overlap = 0;
+        } else {
+            one.spatial_budget = four.spatial_budget = 0;
+        }
+        const rt::accelerator a(s, rt::accelerator_kind::bvh, one), b(s, rt::accelerator_kind::bvh, four);
+        CHECK((a.stats().spatial_splits > 0) == spatial);
+        const std::vector<rt::bvh_node>& na = a.tree().nodes();
+        const std::vector<rt::bvh_node>& nb = b.tree().nodes();
+        REQUIRE(na.size() == nb.size());
+        bool same = true;
+        for (std::size_t i = 0; i < na.size(); ++i)
+            for (int c = 0; c < 4; ++c) {
+                same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
+                for (int row = 0; row < 6; ++row)
+                    same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
+            }
+        const std::vector<rt::packed_primitive>& pa = a.tree().primitives();
+        const std::vector<rt::packed_primitive>& pb = b.tree().primitives();
+        REQUIRE(pa.size() == pb.size());
+        for (std::size_t i = 0; i < pa.size(); ++i)
+            same = same && pa[i].id == pb[i].id;
+        CHECK(same);
+        CHECK(a.stats().nodes == b.stats().nodes);
+        CHECK(a.stats().depth == b.stats().depth);
+        CHECK(a.stats().references == b.stats().references);
+    }
+}
+
+TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box never cuts it")
+{
+    // Random triangles, random planes through them, points of the triangle
+    // (corners, points on the edges, inside) computed in double: each point
+    // on a side of the plane lies in that side's box, also when the box is
+    // cut to a smaller one that holds the point (the piece a node already has).
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> coordinate(-1000, 1000), unit(0, 1);
+    std::size_t points = 0, outside = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double scale = std::pow(10.0, double(k % 7) - 3); // 1e-3 ... 1e3
+        vec3 corner[3];
+        for (vec3& c : corner)
+            c = vec3(real(scale * coordinate(random)), real(scale * coordinate(random)), real(scale * coordinate(random)));
+        const rt::packed_primitive p = rt::pack_triangle(corner[0], corner[1], corner[2], 0);
+        const rt::aabb box = rt::packed_bounds(p);
+        const int axis = k % 3;
+        const real s = box.lo[axis] + real(unit(random)) * (box.hi[axis] - box.lo[axis]);
+        const rt::aabb below = rt::detail::clipped_box(p, axis, s, true, box);
+        const rt::aabb above = rt::detail::clipped_box(p, axis, s, false, box);
+        for (int j = 0; j < 64; ++j) {
+            double b1 = unit(random), b2 = unit(random);
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
+            if (j % 4 == 1) // on an edge
+                b2 = 0;
+            if (j % 4 == 2)
+                b2 = 1 - b1;
+            if (j == 3) // a corner
+                b1 = b2 = 0;
+            double q[3];
+            for (int i = 0; i < 3; ++i)
+                q[i] = (1 - b1 - b2) * double(corner[0][i]) + b1 * double(corner[1][i]) + b2 * double(corner[2][i]);
+            for (const bool side_below : {true, false}) {
+                if (side_below ? q[axis] > double(s) : q[axis] < double(s))
+                    continue;
+                const rt::aabb& piece = side_below ? below : above;
+                ++points;
+                bool in = true;
+                for (int i = 0; i < 3; ++i)
+                    in = in && double(piece.lo[i]) <= q[i] && q[i] <= double(piece.hi[i]);
+                outside += in ? 0 : 1;
+            }
+        }
+    }
+    MESSAGE(points << " points of 2000 cut triangles, " << outside << " outside their piece's box");
+    CHECK(points > 100000);
+    CHECK(outside == 0);
+}
+
+TEST_CASE("a BVH with spatial splits: every ray through a closed mesh's edges and vertices hits, and hits as the list")
+{
+    // An icosphere stretched 40 times along a diagonal: long thin slanted
+    // triangles whose boxes overlap, the case spatial splits are for. Forced
+    // on everywhere (no overlap threshold, one extra reference per triangle).
+    rt::mesh m = icosphere(3, vec3(0), 1);
+    const vec3 d = glm::normalize(vec3(1, 1, real(0.5)));
+    for (vec3& v : m.positions)
+        v += real(39) * glm::dot(v, d) * d;
+    const rt::scene s = scene_of(m);
+    rt::bvh_options cut;
+    cut.spatial_budget = 1;
+    cut.spatial_overlap = 0;
+    rt::bvh_options plain;
+    plain.spatial_budget = 0;
+    const rt::accelerator tree(s, rt::accelerator_kind::bvh, cut);
+    const rt::accelerator uncut(s, rt::accelerator_kind::bvh, plain);
+    MESSAGE(m.triangles.size() << " triangles, " << tree.stats().references << " references after "
+                               << tree.stats().spatial_splits << " spatial splits; SAH cost "
+                               << tree.stats().sah_cost << " (without: " << uncut.stats().sah_cost << ")");
+    REQUIRE(tree.stats().spatial_splits > 0);
+    REQUIRE(tree.stats().references > m.triangles.size());
+    CHECK(uncut.stats().spatial_splits == 0);
+    CHECK(uncut.stats().references == m.triangles.size());
+    CHECK(tree.stats().sah_cost < uncut.stats().sah_cost); // what the splits were taken for
+
+    const std::vector<surface_target> targets = vertex_and_edge_targets(m);
+    std::size_t rays = 0, misses = 0, wrong_t = 0;
+    for (const vec3& origin : {vec3(0), real(13) * d + vec3(real(0.2), real(-0.1), 0), real(-31) * d + vec3(0, real(0.1), real(-0.05))}) {
+        for (const surface_target& target : targets) {
+            const rt::ray ray{origin, target.point - origin};
+            ++rays;
+            rt::hit_record rec;
+            if (!tree.closest_hit(ray, 0, rt::infinity, rec))
+                ++misses;
+            else if (!near(rec.t, 1, real(1e-4)))
+                ++wrong_t;
+            misses += tree.any_hit(ray, 0, rt::infinity) ? 0 : 1;
+        }
+    }
+    MESSAGE(rays << " rays through edges and vertices from inside: " << misses << " misses");
+    CHECK(misses == 0);
+    CHECK(wrong_t == 0);
+
+    // random rays: the same hit as the list, bit for bit
+    std::mt19937 random(23);
+    const rt::accelerator flat(s, rt::accelerator_kind::flat);
+    std::size_t hits = 0, disagreements = 0;
+    for (const rt::ray& r : random_rays(random, 3000)) {
+        rt::hit_record a, b;
+        const bool in_list = flat.closest_hit(r, 0, rt::infinity, a);
+        const bool in_tree = tree.closest_hit(r, 0, rt::infinity, b);
+        disagreements += in_list == in_tree && (!in_list || same_hit(a, b)) &&
+                                 flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity)
+                             ? 0
+                             : 1;
+        hits += in_list ? 1 : 0;
+    }
+    MESSAGE("3000 random rays: " << hits << " hits, " << disagreements << " disagreements with the list");
+    CHECK(hits > 100);
+    CHECK(disagreements == 0);
+}
+
+TEST_CASE("an accelerator of an empty scene or of one shape, and auto picks the flat list for tiny scenes")
+{
+    const rt::scene empty;
+    const rt::accelerator none(empty);
+    rt::hit_record rec;
+    CHECK_FALSE(none.closest_hit(rt::ray{{0, 0, 0}, {1, 0, 0}}, 0, rt::infinity, rec));
+    CHECK_FALSE(none.any_hit(rt::ray{{0, 0, 0}, {1, 0, 0}}, 0, rt::infinity));
+    const rt::accelerator empty_tree(empty, rt::accelerator_kind::bvh);
+    CHECK_FALSE(empty_tree.closest_hit(rt::ray{{0, 0, 0}, {1, 0, 0}}, 0, rt::infinity, rec));
+
+    rt::scene one;
+    rt::sphere ball;
+    ball.center = vec3(5, 0, 0);
+    one.shapes.emplace_back(ball);
+    const rt::accelerator automatic(one);
+    CHECK(automatic.kind() == rt::accelerator_kind::flat);
+    const rt::accelerator tree(one, rt::accelerator_kind::bvh);
+    REQUIRE(tree.closest_hit(rt::ray{{0, 0, 0}, {1, 0, 0}}, 0, rt::infinity, rec));
+    CHECK(near(rec.t, 4));
+    CHECK(tree.any_hit(rt::ray{{0, 0, 0}, {1, 0, 0}}, 0, rt::infinity));
+    CHECK_FALSE(tree.any_hit(rt::ray{{0, 0, 0}, {-1, 0, 0}}, 0, rt::infinity));
+
+    std::mt19937 random(3);
+    const rt::scene many = random_scene(random, 0, 200, false);
+    CHECK(rt::accelerator(many).kind() == rt::accelerator_kind::bvh);
+
+    CHECK(rt::parse_accelerator_kind("auto") == rt::accelerator_kind::automatic);
+    CHECK(rt::parse_accelerator_kind("flat") == rt::accelerator_kind::flat);
+    CHECK(rt::parse_accelerator_kind("bvh") == rt::accelerator_kind::bvh);
+    CHECK_THROWS_AS(rt::parse_accelerator_kind("kd-tree"), rt::error);
+}
+
+TEST_CASE("the BVH agrees hit for hit with the flat list on the Stanford bunny")
+{
+    const std::filesystem::path bunny = std::filesystem::path(RT_SHARED_DIR) / "meshes" / "stanford-bunny.obj";
+    if (!std::filesystem::exists(bunny)) {
+        MESSAGE("skipped: " << bunny.string() << " is not there");
+        return;
+    }
+    const rt::scene s = scene_of(rt::load_obj(bunny).geometry);
+    const rt::mesh& m = std::get<rt::mesh>(s.shapes[0]);
+    REQUIRE(m.triangles.size() == 69451);
+    const rt::accelerator flat(s, rt::accelerator_kind::flat);
+    const rt::accelerator tree(s, rt::accelerator_kind::bvh);
+    const rt::aabb box = bounds_of(m);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<real> unit(0, 1);
+    std::size_t hits = 0, disagreements = 0;
+    const int rays = 120; // the flat list tests all 69451 triangles per ray
+    for (int k = 0; k < rays; ++k) {
+        // from a point around the bunny to a random point in its box
+        const vec3 target = box.lo + vec3(unit(random), unit(random), unit(random)) * box.extent();
+        const vec3 from = box.center() + glm::length(box.extent()) *
+                                             glm::normalize(vec3(unit(random) - real(0.5), unit(random) - real(0.5),
+                                                                 unit(random) - real(0.5)));
+        const rt::ray r{from, target - from};
+        rt::hit_record a, b;
+        const bool hit_flat = flat.closest_hit(r, 0, rt::infinity, a);
+        const bool hit_tree = tree.closest_hit(r, 0, rt::infinity, b);
+        const bool same = hit_flat == hit_tree && (!hit_flat || same_hit(a, b)) &&
+                          flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity);
+        disagreements += same ? 0 : 1;
+        hits += hit_flat ? 1 : 0;
+    }
+    MESSAGE("bunny: " << rays << " rays, " << hits << " hits, " << disagreements << " disagreements");
+    CHECK(hits > rays / 4);
+    CHECK(disagreements == 0);
+}

@@ -1,0 +1,159 @@
+// library_image_output.cpp - the parts of stage 08's output that are library
+// code, not exercises: exposure, AOVs in 8 bits, the names of tone maps,
+// samplers and filters, PFM files, and atomic writes (include/rt/image_io.hpp,
+// include/rt/atomic_file.hpp). Expected values are closed forms worked out by
+// hand in each case. No exercise is called.
+#include "rt_doctest.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include <rt/atomic_file.hpp>
+#include <rt/encoding.hpp>
+#include <rt/error.hpp>
+#include <rt/filter.hpp>
+#include <rt/image.hpp>
+#include <rt/image_io.hpp>
+#include <rt/progress.hpp>
+#include <rt/random.hpp>
+#include <rt/ray.hpp>
+#include <rt/render_setup.hpp>
+#include <rt/renderer.hpp>
+#include <rt/sampler.hpp>
+#include <rt/tonemap.hpp>
+#include <rt/transfer.hpp>
+
+namespace {
+
+// ---------------------------------------------------------------------------
+// helpers
+
+/// A folder of its own under the system's temporary folder, removed at the end.
+struct scratch_folder {
+    std::filesystem::path path;
+    explicit scratch_folder(const std::string& name)
+    {
+        rt::pcg32 rng(std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()), 7);
+        path = std::filesystem::temp_directory_path() / ("rt-stage08-" + name + "-" + std::to_string(rng.next_u32()));
+        std::filesystem::create_directories(path);
+    }
+    ~scratch_folder()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    scratch_folder(const scratch_folder&) = delete;
+    scratch_folder& operator=(const scratch_folder&) = delete;
+};
+
+std::uint32_t bits_of(float value)
+{
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+/// Two images are equal bit for bit (also telling -0 from 0 and NaN payloads apart).
+bool identical(const rt::image& a, const rt::image& b)
+{
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(rt::color)) == 0;
+}
+
+} // namespace
+
+// ===========================================================================
+// tone maps, exposure, transfer functions, quantisation
+
+namespace {
+
+} // namespace
+
+TEST_CASE("exposure: +1 stop doubles, -1 stop halves, 0 changes nothing")
+{
+    const rt::color c(0.1f, 0.5f, 3.0f);
+    CHECK(rt::apply_exposure(c, 1.0f) == c * 2.0f);
+    CHECK(rt::apply_exposure(c, -1.0f) == c * 0.5f);
+    CHECK(rt::apply_exposure(c, 0.0f) == c);
+    CHECK(rt::apply_exposure(c, 3.0f).b == doctest::Approx(24.0));
+}
+
+TEST_CASE("tone map, sampler and filter names read back")
+{
+    for (auto kind : {rt::tonemap_kind::clamp, rt::tonemap_kind::reinhard, rt::tonemap_kind::aces})
+        CHECK(rt::tonemap_from_name(rt::name_of(kind)) == kind);
+    for (auto kind : {rt::sampler_kind::center, rt::sampler_kind::grid, rt::sampler_kind::random,
+                      rt::sampler_kind::jittered, rt::sampler_kind::halton})
+        CHECK(rt::sampler_from_name(rt::name_of(kind)) == kind);
+    for (auto kind : {rt::filter_kind::box, rt::filter_kind::tent, rt::filter_kind::gaussian, rt::filter_kind::mitchell})
+        CHECK(rt::filter_from_name(rt::name_of(kind)) == kind);
+    CHECK_FALSE(rt::tonemap_from_name("filmic").has_value());
+    CHECK_FALSE(rt::sampler_from_name("sobol").has_value());
+    CHECK_FALSE(rt::filter_from_name("lanczos").has_value());
+}
+
+TEST_CASE("PFM round trip is bit-exact: negative, tiny, huge, zero, -0, infinite")
+{
+    const float values[] = {0.0f,
+                            -0.0f,
+                            1.0f,
+                            -1.5f,
+                            0.1f,
+                            std::numeric_limits<float>::denorm_min(),  // 1.4e-45
+                            -std::numeric_limits<float>::denorm_min(),
+                            std::numeric_limits<float>::min(),         // the smallest normal
+                            std::numeric_limits<float>::max(),
+                            -std::numeric_limits<float>::max(),
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            1e-30f,
+                            123456.789f,
+                            std::nextafter(1.0f, 2.0f),
+                            3.14159265f,
+                            -2.7182818f,
+                            1e38f};
+    const int count = int(std::size(values));
+    rt::image img(5, 4); // 20 pixels, 60 channels: the values and a position-dependent rest
+    for (int k = 0; k < 60; ++k)
+        img.pixels[std::size_t(k / 3)][k % 3] = k < count ? values[k] : float(k) * -0.37f;
+    std::stringstream buffer;
+    rt::write_pfm(buffer, img);
+    const rt::image back = rt::read_pfm(buffer);
+    REQUIRE(back.width == 5);
+    REQUIRE(back.height == 4);
+    for (std::size_t k = 0; k < img.pixels.size(); ++k)
+        for (int channel = 0; channel < 3; ++channel)
+            CHECK(bits_of(back.pixels[k][channel]) == bits_of(img.pixels[k][channel]));
+
+    // and through a file written by save_image
+    scratch_folder folder("pfm");
+    rt::save_image(folder.path / "round.pfm", img, rt::encoding{});
+    std::ifstream in(folder.path / "round.pfm", std::ios::binary);
+    CHECK(identical(rt::read_pfm(in, "round.pfm"), img));
+}
+
+TEST_CASE("plain gamma: x^(1/gamma), gamma 1 stores linear values")
+{
+    CHECK(rt::gamma_encode(0.25f, 2.0f) == doctest::Approx(0.5));
+    CHECK(rt::gamma_encode(0.125f, 3.0f) == doctest::Approx(0.5));
+    CHECK(rt::gamma_encode(0.3f, 1.0f) == doctest::Approx(0.3));
+    CHECK(rt::gamma_encode(1.0f, 2.2f) == 1.0f);
+    CHECK(rt::gamma_encode(-1.0f, 2.2f) == 0.0f);
+    CHECK(rt::gamma_encode(std::nanf(""), 2.2f) == 0.0f);
+}

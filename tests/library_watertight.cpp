@@ -1,0 +1,376 @@
+// library_watertight.cpp - the library's triangle test, rt::hit_triangle
+// (include/rt/triangle.hpp: the watertight test of Woop, Benthin, Wald 2013),
+// its SIMD leaves and its hit-point error bound.
+//
+// Watertightness is a property: a closed mesh seen from inside is hit by every
+// ray, through its edges and vertices. Moller-Trumbore, the stage-04 exercise,
+// leaks there in float; the count is made on a copy of it written in this file
+// from the paper (moller_trumbore_copy below), never on the student's function,
+// so this suite calls no exercise and a student's more careful code is never
+// marked down.
+#include "rt_doctest.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <rt/bvh.hpp>
+#include <rt/intersect.hpp>
+#include <rt/obj_loader.hpp>
+#include <rt/offset.hpp>
+#include <rt/spawn.hpp>
+#include <rt/triangle.hpp>
+
+namespace {
+
+using rt::real;
+using rt::vec3;
+
+constexpr bool in_float = std::is_same_v<real, float>;
+const real tol = in_float ? real(1e-5) : real(1e-12);
+
+bool near(real got, real want, real eps = tol)
+{
+    return std::fabs(got - want) <= eps * std::max(real(1), std::fabs(want));
+}
+
+bool near(const vec3& got, const vec3& want, real eps = tol)
+{
+    return near(got.x, want.x, eps) && near(got.y, want.y, eps) && near(got.z, want.z, eps);
+}
+
+// --- meshes built here ------------------------------------------------------
+
+/// A unit icosahedron subdivided `levels` times (each triangle into four, the
+/// new corners pushed onto the sphere), then scaled and moved. Corners shared
+/// by neighbouring triangles are one index, so the mesh is closed; every face
+/// is counter-clockwise seen from outside.
+rt::mesh icosphere(int levels, const vec3& center, real radius)
+{
+    const double g = (1 + std::sqrt(5.0)) / 2;
+    std::vector<std::array<double, 3>> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<rt::index3> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+    auto unit = [](std::array<double, 3> v) {
+        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        return std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l};
+    };
+    for (auto& v : p)
+        v = unit(v);
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
+        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            const auto found = middle.find(key);
+            if (found != middle.end())
+                return found->second;
+            p.push_back(unit({p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]}));
+            const auto index = std::uint32_t(p.size() - 1);
+            middle[key] = index;
+            return index;
+        };
+        std::vector<rt::index3> finer;
+        for (const rt::index3& f : faces) {
+            const std::uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            finer.push_back({f[0], ab, ca});
+            finer.push_back({f[1], bc, ab});
+            finer.push_back({f[2], ca, bc});
+            finer.push_back({ab, bc, ca});
+        }
+        faces = finer;
+    }
+    rt::mesh m;
+    for (const auto& v : p)
+        m.positions.push_back(center + radius * vec3(real(v[0]), real(v[1]), real(v[2])));
+    for (rt::index3 f : faces) { // make every face counter-clockwise seen from outside
+        const vec3 a = m.positions[f[0]] - center, b = m.positions[f[1]] - center, c = m.positions[f[2]] - center;
+        if (glm::dot(glm::cross(b - a, c - a), a + b + c) < 0)
+            std::swap(f[1], f[2]);
+        m.triangles.push_back(f);
+    }
+    return m;
+}
+
+rt::mesh cube_from_file()
+{
+    return rt::load_obj(RT_TEST_DATA_DIR "/cube.obj").geometry;
+}
+
+rt::scene scene_of(rt::mesh m)
+{
+    rt::scene s;
+    s.shapes.emplace_back(std::move(m));
+    return s;
+}
+
+/// Targets on a closed mesh's surface that rays from inside are aimed at,
+/// each with the triangles it lies on: every vertex (its fan), every edge's
+/// midpoint and seven points along it (the edge's two triangles).
+struct surface_target {
+    vec3 point;
+    std::vector<std::size_t> triangles;
+};
+
+std::vector<surface_target> vertex_and_edge_targets(const rt::mesh& m)
+{
+    std::vector<surface_target> targets(m.positions.size());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        const rt::index3& f = m.triangles[i];
+        for (int k = 0; k < 3; ++k) {
+            targets[f[std::size_t(k)]].triangles.push_back(i);
+            const std::uint32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
+            edges[{std::min(a, b), std::max(a, b)}].push_back(i);
+        }
+    }
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        targets[v].point = m.positions[v];
+    for (const auto& [edge, triangles] : edges) {
+        const vec3 a = m.positions[edge.first], b = m.positions[edge.second];
+        targets.push_back({(a + b) * real(0.5), triangles});
+        for (int k = 1; k < 8; ++k)
+            if (k != 4)
+                targets.push_back({a + (real(k) / 8) * (b - a), triangles});
+    }
+    return targets;
+}
+
+// --- files written by the OBJ tests ---------------------------------------------
+
+/// Moller-Trumbore, copied here from the paper (Moller, Trumbore, "Fast, minimum
+/// storage ray-triangle intersection", JGT 1997, sec. 2): P = d x e2, det = e1.P,
+/// T = o - a, u = T.P / det, Q = T x e1, v = d.Q / det, t = e2.Q / det.
+/// Only whether it hits in [tmin, tmax] is returned: it serves the leak count.
+bool moller_trumbore_copy(const rt::triangle& tri, const rt::ray& r, real tmin, real tmax)
+{
+    const vec3 e1 = tri.b - tri.a, e2 = tri.c - tri.a;
+    const vec3 P = glm::cross(r.direction, e2);
+    const real det = glm::dot(e1, P);
+    if (det == 0)
+        return false;
+    const real inv = 1 / det;
+    const vec3 T = r.origin - tri.a;
+    const real u = glm::dot(T, P) * inv;
+    if (u < 0 || u > 1)
+        return false;
+    const vec3 Q = glm::cross(T, e1);
+    const real v = glm::dot(r.direction, Q) * inv;
+    if (v < 0 || u + v > 1)
+        return false;
+    const real t = glm::dot(e2, Q) * inv;
+    return tmin <= t && t <= tmax;
+}
+
+} // namespace
+
+// =============================================================================
+// One triangle, worked out by hand
+// =============================================================================
+
+namespace {
+
+} // namespace
+
+TEST_CASE("the hit point's error bound covers the point and shrinks with the coordinates")
+{
+    // point_error = gamma_7 (|b0 a| + |b1 b| + |b2 c|) (PBR 3rd ed., sec. 3.9.4)
+    const rt::triangle tri{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, -1};
+    rt::hit_record rec;
+    REQUIRE(rt::hit_triangle(tri, rt::ray{{0.25f, 0.5f, 2}, {0, 0, -1}}, 0, 10, rec));
+    CHECK(near(rec.point_error.x, rt::gamma_n(7) * real(0.25), real(1e-3)));
+    CHECK(near(rec.point_error.y, rt::gamma_n(7) * real(0.5), real(1e-3)));
+    CHECK(rec.point_error.z == 0);
+    CHECK(rt::gamma_n(1) > rt::unit_roundoff);
+    CHECK(rt::gamma_n(7) < 8 * rt::unit_roundoff);
+}
+
+TEST_CASE("a mesh interpolates the normals its file gives, turned to the side the ray came from")
+{
+    // corners with normals (0,0,1), (0,0,1), (1,0,0); at b = (0.25, 0.25, 0.5)
+    // n = 0.5 (0,0,1) + 0.5 (1,0,0), normalised (1, 0, 1)/sqrt(2)
+    rt::mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.triangles = {{0, 1, 2}};
+    m.normals = {{0, 0, 1}, {1, 0, 0}};
+    m.normal_indices = {{0, 0, 1}};
+    m.face_materials = {3};
+    const real h = real(1) / std::sqrt(real(2));
+    rt::hit_record rec;
+    REQUIRE(rt::hit_mesh(m, rt::ray{{0.25f, 0.5f, 1}, {0, 0, -1}}, 0, 10, rec));
+    CHECK(near(rec.geometric_normal, vec3(0, 0, 1)));
+    CHECK(near(rec.normal, vec3(h, 0, h)));
+    CHECK(rec.material == 3);
+    CHECK(rec.primitive == 0);
+    REQUIRE(rt::hit_mesh(m, rt::ray{{0.25f, 0.5f, -1}, {0, 0, 1}}, 0, 10, rec));
+    CHECK(near(rec.geometric_normal, vec3(0, 0, -1)));
+    CHECK(near(rec.normal, vec3(-h, 0, -h)));
+
+    // without normals (or with a corner missing one) the shading normal is the geometric one
+    m.normal_indices = {{0, rt::no_index, 1}};
+    REQUIRE(rt::hit_mesh(m, rt::ray{{0.25f, 0.5f, 1}, {0, 0, -1}}, 0, 10, rec));
+    CHECK(near(rec.normal, vec3(0, 0, 1)));
+}
+
+TEST_CASE("rays from inside closed meshes at vertices and edges: Moller-Trumbore leaks, the watertight test never does")
+{
+    struct closed_mesh {
+        const char* name;
+        rt::mesh geometry;
+        std::vector<vec3> inside;
+    };
+    const vec3 c(real(0.3), real(-0.7), real(0.2));
+    const real r = real(1.7);
+    std::vector<closed_mesh> meshes;
+    meshes.push_back({"icosphere (3 subdivisions, 1280 triangles)", icosphere(3, c, r),
+                      {c, c + r * vec3(0.3f, -0.2f, 0.1f), c + r * vec3(-0.45f, 0.35f, 0.3f)}});
+    meshes.push_back({"cube.obj (12 triangles)", cube_from_file(),
+                      {vec3(0), vec3(0.1f, 0.2f, -0.15f), vec3(-0.3f, 0.25f, 0.1f), vec3(0.37f, -0.41f, 0.29f)}});
+    std::size_t total_mt_misses = 0;
+    for (const closed_mesh& closed : meshes) {
+        const std::string mesh_name = closed.name;
+        CAPTURE(mesh_name);
+        const rt::mesh& m = closed.geometry;
+        const std::vector<surface_target> targets = vertex_and_edge_targets(m);
+        const rt::scene s = scene_of(m);
+        const rt::accelerator tree(s, rt::accelerator_kind::bvh);
+        std::size_t rays = 0, mt_misses = 0, watertight_misses = 0, bvh_misses = 0, bvh_wrong_t = 0;
+        for (const vec3& origin : closed.inside) {
+            for (const surface_target& target : targets) {
+                const rt::ray ray{origin, target.point - origin}; // reaches the target at t = 1
+                ++rays;
+                // A convex mesh is left exactly once, at the target: only the
+                // triangles that the target lies on can be hit.
+                bool mt = false, watertight = false;
+                rt::hit_record rec;
+                for (std::size_t i : target.triangles) {
+                    const rt::index3& f = m.triangles[i];
+                    const rt::triangle tri{m.positions[f[0]], m.positions[f[1]], m.positions[f[2]], -1};
+                    mt = mt || moller_trumbore_copy(tri, ray, 0, rt::infinity);
+                    watertight = watertight || rt::hit_triangle(tri, ray, 0, rt::infinity, rec);
+                }
+                mt_misses += mt ? 0 : 1;
+                watertight_misses += watertight ? 0 : 1;
+                if (!tree.closest_hit(ray, 0, rt::infinity, rec))
+                    ++bvh_misses;
+                else if (!near(rec.t, 1, real(1e-4)))
+                    ++bvh_wrong_t;
+            }
+        }
+        MESSAGE(mesh_name << ": " << rays << " rays, Moller-Trumbore misses " << mt_misses << " ("
+                            << 100.0 * double(mt_misses) / double(rays) << "%), watertight misses "
+                            << watertight_misses << ", BVH misses " << bvh_misses);
+        CHECK(watertight_misses == 0);
+        CHECK(bvh_misses == 0);
+        CHECK(bvh_wrong_t == 0);
+        total_mt_misses += mt_misses;
+    }
+    if (in_float)
+        CHECK(total_mt_misses > 0); // the textbook method (this file's copy) leaks in float
+}
+
+TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, through shared edges and vertices")
+{
+    // The BVH tests its leaves four triangles at a time (rt::triangle_block,
+    // rt::detail::intersect_block: SSE where available). Each lane must give
+    // exactly what intersect_watertight gives for that triangle alone: the same
+    // hit or miss, the same t and barycentrics, bit for bit. Rays from inside a
+    // closed mesh at every vertex and along every edge (where the sign tests
+    // decide), and random rays through it; the blocks are the mesh's triangles
+    // four by four, the last one partial, and one block holds a sphere, which
+    // the triangle test must leave alone.
+    const vec3 c(real(0.3), real(-0.7), real(0.2));
+    const real r = real(1.7);
+    const rt::mesh m = icosphere(2, c, r);
+    std::vector<rt::packed_primitive> prims;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        const rt::index3& f = m.triangles[i];
+        prims.push_back(rt::pack_triangle(m.positions[f[0]], m.positions[f[1]], m.positions[f[2]], std::uint32_t(i)));
+    }
+    rt::sphere ball;
+    ball.center = c;
+    ball.radius = r / 2;
+    prims.insert(prims.begin() + 5, rt::pack_sphere(ball, 999)); // lane 1 of block 1
+    REQUIRE(prims.size() % 4 == 1);                                 // the last block has one lane
+    std::vector<rt::triangle_block> blocks;
+    for (std::size_t first = 0; first < prims.size(); first += 4)
+        blocks.push_back(rt::pack_triangle_block(prims.data(), first, std::min<std::size_t>(4, prims.size() - first)));
+    REQUIRE(blocks.size() == (prims.size() + 3) / 4);
+
+    std::vector<rt::ray> rays;
+    const vec3 inside[] = {c, c + r * vec3(0.3f, -0.2f, 0.1f), c + r * vec3(-0.45f, 0.35f, 0.3f)};
+    for (const vec3& origin : inside)
+        for (const surface_target& target : vertex_and_edge_targets(m))
+            rays.push_back(rt::ray{origin, target.point - origin});
+    std::mt19937 random(17);
+    std::uniform_real_distribution<real> unit(-1, 1);
+    auto random_vec = [&] { // one number per statement: the same rays with every compiler
+        vec3 v;
+        v.x = unit(random);
+        v.y = unit(random);
+        v.z = unit(random);
+        return v;
+    };
+    for (int k = 0; k < 3000; ++k) {
+        const vec3 from = c + 3 * r * random_vec();
+        const vec3 to = c + r * random_vec();
+        rays.push_back(rt::ray{from, to - from});
+    }
+
+    std::size_t lane_tests = 0, hits = 0, disagreements = 0, rays_missing_the_mesh = 0;
+    const std::size_t through_targets = rays.size() - 3000;
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+        const rt::ray& ray = rays[k];
+        const rt::watertight_ray w = rt::make_watertight_ray(ray);
+        const rt::detail::leaf_ray leaf = rt::detail::make_leaf_ray(w);
+        bool any = false;
+        for (const real tmax : {rt::infinity, real(1)}) { // t = 1 is where the targets are
+            for (const rt::triangle_block& b : blocks) {
+                rt::triangle_hit simd[4];
+                const int mask = rt::detail::intersect_block(b, leaf, w, 0, tmax, simd);
+                for (int lane = 0; lane < 4; ++lane) {
+                    ++lane_tests;
+                    bool expected = false;
+                    rt::triangle_hit scalar;
+                    if (!(b.id[lane] & rt::sphere_flag)) {
+                        real v[9];
+                        for (int j = 0; j < 9; ++j)
+                            v[j] = b.v[j][lane];
+                        expected = rt::intersect_watertight(w, v, 0, tmax, scalar);
+                    }
+                    const bool got = (mask & (1 << lane)) != 0;
+                    bool same = got == expected;
+                    if (same && got) {
+                        ++hits;
+                        same = simd[lane].t == scalar.t && simd[lane].b0 == scalar.b0 && simd[lane].b1 == scalar.b1 &&
+                               simd[lane].b2 == scalar.b2;
+                    }
+                    disagreements += same ? 0 : 1;
+                    any = any || got;
+                }
+            }
+        }
+        if (k < through_targets && !any)
+            ++rays_missing_the_mesh;
+    }
+    const std::string path = rt::bvh::uses_sse ? "SSE" : "the scalar fallback";
+    MESSAGE("SIMD leaf test (" << path << "): " << rays.size() << " rays, "
+                               << lane_tests << " lane tests, " << hits << " hits, " << disagreements
+                               << " disagreements; rays at vertices and edges missing the closed mesh: "
+                               << rays_missing_the_mesh);
+    CHECK(hits > rays.size());
+    CHECK(disagreements == 0);
+    CHECK(rays_missing_the_mesh == 0);
+}
