@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include <rt/camera.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/spawn.hpp>
 #include <rt/triangle.hpp>

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include <rt/camera.hpp>
 #include <rt/intersect.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/raytracer.hpp>

@@ -12,32 +12,12 @@
 #include <cmath>
 #include <optional>
 
+#include "camera_model.hpp"
 #include "error.hpp"
 #include "ray.hpp"
 #include "vec.hpp"
 
 namespace rt {
-
-enum class projection { perspective, orthographic };
-
-/// The image-plane window: the u range [l, r] and the v range [b, t].
-struct window {
-    real l = -1, r = 1, b = -1, t = 1;
-};
-
-/// The camera as a scene file declares it. Either a vertical field of view or
-/// an explicit window; when neither is given, a perspective camera uses a
-/// 45 degree field of view and an orthographic one the window [-1, 1] in v,
-/// widened to the image's aspect ratio.
-struct camera {
-    projection kind = projection::perspective;
-    vec3 eye{0, 0, 1};      ///< e
-    vec3 look_at{0, 0, 0};  ///< the point the camera looks at
-    vec3 up{0, 1, 0};       ///< up vector; need not be orthogonal to the view direction
-    std::optional<real> fov_degrees;  ///< vertical field of view (perspective only)
-    std::optional<window> plane;      ///< explicit window l, r, b, t
-    real focal_distance = 1;          ///< d, the distance from e to the image plane
-};
 
 /// A right-handed orthonormal basis: u right, v up, w backwards (away from the view).
 struct frame {

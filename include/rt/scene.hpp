@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "aabb.hpp"
-#include "camera.hpp"
+#include "camera_model.hpp"
 #include "light.hpp"
 #include "material.hpp"
 #include "mesh.hpp"

@@ -25,7 +25,7 @@
 #include <variant>
 #include <vector>
 
-#include "camera.hpp"
+#include "camera_model.hpp"
 #include "error.hpp"
 #include "obj_loader.hpp"
 #include "scene.hpp"

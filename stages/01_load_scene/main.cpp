@@ -9,7 +9,7 @@
 #include <iostream>
 #include <variant>
 
-#include <rt/camera.hpp>
+#include <rt/camera_model.hpp>
 #include <rt/scene.hpp>
 
 #include "stage_main.hpp"
