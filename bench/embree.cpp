@@ -30,12 +30,12 @@
 #include <vector>
 
 #include <rt/obj_loader.hpp>
-#include <rt/spawn.hpp>
-#include <rt/triangle.hpp>
 #include <rt/random.hpp>
 #include <rt/scene.hpp>
+#include <rt/spawn.hpp>
+#include <rt/watertight.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #endif
 
 #include "bench.hpp"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/renderer.hpp>
