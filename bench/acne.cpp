@@ -29,8 +29,8 @@
 #include <string>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
-#include <rt/intersect.hpp>
 #include <rt/light.hpp>
 #include <rt/offset.hpp>
 #include <rt/scene.hpp>

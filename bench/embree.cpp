@@ -31,12 +31,12 @@
 
 #include <rt/camera.hpp>
 #include <rt/obj_loader.hpp>
-#include <rt/spawn.hpp>
-#include <rt/triangle.hpp>
 #include <rt/random.hpp>
 #include <rt/scene.hpp>
+#include <rt/spawn.hpp>
+#include <rt/watertight.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #endif
 
 #include "bench.hpp"

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
-#include <rt/intersect.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/renderer.hpp>

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
-#include <rt/intersect.hpp>
 #include <rt/random.hpp>
 #include <rt/scene.hpp>
 

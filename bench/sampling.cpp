@@ -29,7 +29,7 @@
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/scene_loader.hpp>
 #endif

@@ -34,6 +34,7 @@
 
 #include <rt/random.hpp>
 #include <rt/triangle.hpp>
+#include <rt/watertight.hpp>
 
 #include "bench.hpp"
 

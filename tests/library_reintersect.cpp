@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #include <rt/light.hpp>
 #include <rt/offset.hpp>
 #include <rt/random.hpp>

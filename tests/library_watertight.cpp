@@ -1,5 +1,5 @@
 // library_watertight.cpp - the library's triangle test, rt::hit_triangle
-// (include/rt/triangle.hpp: the watertight test of Woop, Benthin, Wald 2013),
+// (include/rt/watertight.hpp: the watertight test of Woop, Benthin, Wald 2013),
 // its SIMD leaves and its hit-point error bound.
 //
 // Watertightness is a property: a closed mesh seen from inside is hit by every
@@ -24,12 +24,12 @@
 #include <utility>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/bvh.hpp>
-#include <rt/intersect.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/offset.hpp>
 #include <rt/spawn.hpp>
-#include <rt/triangle.hpp>
+#include <rt/watertight.hpp>
 
 namespace {
 

@@ -27,12 +27,14 @@
 #include <utility>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/bvh.hpp>
-#include <rt/intersect.hpp>
+#include <rt/hit_list.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/offset.hpp>
 #include <rt/spawn.hpp>
 #include <rt/triangle.hpp>
+#include <rt/watertight.hpp>
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #include <rt/light.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include <rt/intersect.hpp>
+#include <rt/accelerator.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/render_setup.hpp>
 #include <rt/scene.hpp>

@@ -545,7 +545,8 @@ def stage_doc(root: Path, stage: int) -> Optional[str]:
     if docs.is_dir():
         for entry in sorted(docs.iterdir()):
             m = STAGE_DOC_RE.match(entry.name)
-            if m and int(m.group("stage")) == stage:
+            # NN-going-further.md is the page after the lesson, never the lesson
+            if m and int(m.group("stage")) == stage and not entry.name.endswith("-going-further.md"):
                 return f"docs/stages/{entry.name}"
     return None
 

@@ -162,8 +162,8 @@
 #include "ray.hpp"
 #include "rounding.hpp"
 #include "sphere_stable.hpp"
-#include "triangle.hpp"
 #include "vec.hpp"
+#include "watertight.hpp"
 
 namespace rt {
 
@@ -1278,7 +1278,7 @@ inline __m128 edge_function4(const wide4& a, const wide4& b, const wide4& c, con
 #endif
 }
 
-/// max_abs3 (triangle.hpp) of four lanes: the largest of |p|, |q|, |s|.
+/// max_abs3 (watertight.hpp) of four lanes: the largest of |p|, |q|, |s|.
 inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 {
     const __m128 sign = _mm_set1_ps(-0.0f);

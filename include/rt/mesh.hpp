@@ -21,8 +21,8 @@
 
 #include "hit_record.hpp"
 #include "ray.hpp"
-#include "triangle.hpp"
 #include "vec.hpp"
+#include "watertight.hpp"
 
 namespace rt {
 

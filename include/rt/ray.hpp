@@ -5,9 +5,14 @@
 // distance in units of |d|.
 #pragma once
 
+#include <limits>
+
 #include "vec.hpp"
 
 namespace rt {
+
+/// +inf as rt::real: the tmax of a ray that may go on forever.
+constexpr real infinity = std::numeric_limits<real>::infinity();
 
 struct ray {
     vec3 origin{0};    ///< p

@@ -30,12 +30,12 @@
 #include <variant>
 #include <vector>
 
+#include "accelerator.hpp"
 #include "camera.hpp"
 #include "encoding.hpp"
 #include "error.hpp"
 #include "hit_record.hpp"
 #include "image.hpp"
-#include "intersect.hpp"
 #include "light.hpp"
 #include "mesh.hpp"
 #include "obj_loader.hpp"
@@ -46,8 +46,8 @@
 #include "sampler.hpp"
 #include "scene.hpp"
 #include "scene_loader.hpp"
-#include "triangle.hpp"
 #include "vec.hpp"
+#include "watertight.hpp"
 
 namespace rt {
 

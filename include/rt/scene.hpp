@@ -18,7 +18,7 @@
 #include "material.hpp"
 #include "mesh.hpp"
 #include "sphere_shape.hpp"
-#include "triangle.hpp"
+#include "triangle_shape.hpp"
 #include "vec.hpp"
 
 namespace rt {

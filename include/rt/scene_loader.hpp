@@ -598,7 +598,7 @@ private:
         tri.a = line.vector("corner a");
         tri.b = line.vector("corner b");
         tri.c = line.vector("corner c");
-        if (triangle_normal(tri.a, tri.b, tri.c) == vec3(0)) // the library's normal (triangle.hpp)
+        if (triangle_normal(tri.a, tri.b, tri.c) == vec3(0)) // the library's normal (triangle_shape.hpp)
             throw parse_error(where, "a triangle with non-zero area", "three corners on one line",
                               "check the corners");
         line.options({"material"}, [&](const std::string&) { tri.material = find_material(result_, line); });

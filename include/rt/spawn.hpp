@@ -11,7 +11,7 @@
 //     d = |n_x| e_x + |n_y| e_y + |n_z| e_z   (the box's extent along n)
 // to the side the new ray leaves on, and rounding each coordinate one more
 // step away, puts the origin past the surface. The watertight triangle test
-// then refuses any t within its own error of 0 (triangle.hpp), so a ray spawned
+// then refuses any t within its own error of 0 (watertight.hpp), so a ray spawned
 // this way with tmin = 0 cannot hit the triangle it starts on.
 //
 // Grazing rays. The side the new ray leaves on is the sign of w . n, and that
@@ -32,7 +32,7 @@
 //    the segment's far end off the plane to the origin's side as well, so the
 //    whole segment lies on one side of the surface.
 // A segment between two points strictly on one side of a plane does not meet
-// it; the watertight test's sign decisions are exact (triangle.hpp), so no
+// it; the watertight test's sign decisions are exact (watertight.hpp), so no
 // such ray or segment hits the triangle it leaves (tests/library_reintersect.cpp:
 // 0 in float and double, against hundreds before).
 #pragma once

@@ -23,9 +23,10 @@
 #include <variant>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/atomic_file.hpp>
 #include <rt/camera.hpp>
-#include <rt/intersect.hpp>
+#include <rt/hit_list.hpp>
 
 #include "pixel_story.hpp"
 #include "stage_main.hpp"

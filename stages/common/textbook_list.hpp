@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <variant>
 
-#include <rt/intersect.hpp>
+#include <rt/hit_list.hpp>
 #include <rt/mesh.hpp>
 #include <rt/sphere.hpp>
 #include <rt/triangle.hpp>

@@ -38,11 +38,11 @@
 #include <utility>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
 #include <rt/image.hpp>
-#include <rt/intersect.hpp>
 #include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>

@@ -1,0 +1,195 @@
+// accelerator.hpp - the library's nearest hit of a ray in a whole scene (stage 04;
+// every later stage calls it).
+//
+// rt::accelerator is built once from a scene, as a flat list of packed
+// primitives or as a BVH (bvh.hpp), and returns exactly the same hits as the
+// course's loop over the shapes (closest_hit_list, the stage-04 exercise in
+// hit_list.hpp), faster:
+//
+//     rt::accelerator world(scene);                   // auto: BVH unless the scene is tiny
+//     rt::hit_record rec;
+//     if (world.closest_hit(r, 0, rt::infinity, rec)) ...  // rec.shape, rec.primitive, rec.material
+//     if (world.any_hit(shadow_ray, 0, distance)) ...     // something blocks the light
+//
+// Closest means: the smallest t in [tmin, tmax]; at an equal t, the later
+// primitive in scene order (shapes in file order, a mesh's triangles in its
+// order), which is what the list loop does when it passes the closest t so far
+// as tmax. The list, the flat accelerator and the BVH all follow this rule and
+// all use the robust methods (rt::hit_sphere, the watertight triangle test), so
+// they agree hit for hit.
+//
+// Every hit record is complete: t, point and its rounding error (for
+// spawn_ray), geometric and shading normals facing the ray, front_face,
+// material, shape, primitive, barycentrics. A sphere's hit point and normal
+// are computed again from the ray relative to the centre, in a wider type
+// (refine_sphere_hit), so the normal's direction does not depend on how far
+// the ray came from.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "bvh.hpp"
+#include "error.hpp"
+#include "hit_record.hpp"
+#include "mesh.hpp"
+#include "ray.hpp"
+#include "scene.hpp"
+#include "shape_hit.hpp"
+#include "sphere_stable.hpp"
+#include "triangle_shape.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+/// How an accelerator searches the scene.
+enum class accelerator_kind {
+    flat,      ///< every primitive, in order (packed for speed)
+    bvh,       ///< the bounding volume hierarchy of bvh.hpp
+    automatic  ///< "auto": flat below flat_list_crossover primitives, else bvh
+};
+
+/// Below this many primitives the flat list is faster than the BVH: the
+/// crossover that bench/groups.cpp measures (docs/performance.md, experiment 4:
+/// random spheres and triangles in the unit cube covering it about twice,
+/// primary rays, one thread, the N where the two log-log curves of ns per ray
+/// cross). With the BVH of four-triangle leaf blocks it measured 4 (3 shapes:
+/// flat 101 ns, BVH 112 ns; 5 shapes: flat 122 ns, BVH 111 ns). The older
+/// `stage04_triangle --crossover` experiment (docs/stages/04-triangle.md)
+/// gave 6 on a different mix; either way the difference is tens of ns per ray
+/// on scenes of a handful of shapes.
+constexpr std::size_t flat_list_crossover = 4;
+
+inline const char* to_string(accelerator_kind kind)
+{
+    switch (kind) {
+    case accelerator_kind::flat: return "flat";
+    case accelerator_kind::bvh: return "bvh";
+    default: return "auto";
+    }
+}
+
+/// "flat", "bvh" or "auto"; anything else is an rt::error.
+inline accelerator_kind parse_accelerator_kind(const std::string& word)
+{
+    if (word == "flat")
+        return accelerator_kind::flat;
+    if (word == "bvh")
+        return accelerator_kind::bvh;
+    if (word == "auto")
+        return accelerator_kind::automatic;
+    throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
+}
+
+/// Which shape, and which triangle inside a mesh, a packed primitive came from.
+struct primitive_ref {
+    std::uint32_t shape = 0;
+    std::uint32_t primitive = 0;
+};
+
+/// The scene-level intersection: built once from a scene, then queried by
+/// every ray. The scene must outlive the accelerator and must not change while
+/// it is used. The queries are const and safe to call from many threads.
+class accelerator {
+public:
+    accelerator() = default;
+
+    explicit accelerator(const scene& s, accelerator_kind kind = accelerator_kind::automatic,
+                         const bvh_options& options = {})
+        : scene_(&s)
+    {
+        std::vector<packed_primitive> prims;
+        for (std::size_t i = 0; i < s.shapes.size(); ++i) {
+            const shape& item = s.shapes[i];
+            if (const sphere* ball = std::get_if<sphere>(&item)) {
+                prims.push_back(pack_sphere(*ball, next_id(i, 0)));
+            } else if (const triangle* tri = std::get_if<triangle>(&item)) {
+                prims.push_back(pack_triangle(tri->a, tri->b, tri->c, next_id(i, 0)));
+            } else {
+                const mesh& m = std::get<mesh>(item);
+                for (std::size_t k = 0; k < m.triangles.size(); ++k) {
+                    const index3& face = m.triangles[k];
+                    prims.push_back(pack_triangle(m.positions[face[0]], m.positions[face[1]],
+                                                  m.positions[face[2]], next_id(i, k)));
+                }
+            }
+        }
+        if (kind == accelerator_kind::automatic)
+            kind = prims.size() < flat_list_crossover ? accelerator_kind::flat : accelerator_kind::bvh;
+        kind_ = kind;
+        if (kind_ == accelerator_kind::flat)
+            flat_ = std::move(prims);
+        else
+            tree_ = bvh(std::move(prims), options);
+    }
+
+    /// The closest hit in [tmin, tmax] (see the top of this file), with every
+    /// field of `rec` filled. Precondition: r.direction is not zero.
+    bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
+    {
+        primitive_hit h;
+        const bool found = kind_ == accelerator_kind::flat ? closest_flat(flat_, r, tmin, tmax, h)
+                                                           : tree_.closest(r, tmin, tmax, h);
+        if (!found)
+            return false;
+        complete(r, tmin, tmax, h, rec);
+        return true;
+    }
+
+    /// Whether anything is hit in [tmin, tmax]; cheaper than closest_hit
+    /// because it stops at the first hit (shadow rays).
+    bool any_hit(const ray& r, real tmin, real tmax) const
+    {
+        return kind_ == accelerator_kind::flat ? any_flat(flat_, r, tmin, tmax) : tree_.any(r, tmin, tmax);
+    }
+
+    /// flat or bvh (automatic is resolved when the accelerator is built).
+    accelerator_kind kind() const { return kind_; }
+    std::size_t primitive_count() const { return refs_.size(); }
+    /// The BVH's statistics (all zero for a flat accelerator).
+    const bvh_stats& stats() const { return tree_.stats(); }
+    const bvh& tree() const { return tree_; }
+    const primitive_ref& reference(std::uint32_t id) const { return refs_[id]; }
+
+private:
+    std::uint32_t next_id(std::size_t shape_index, std::size_t primitive)
+    {
+        if (refs_.size() >= std::size_t(sphere_flag - 1))
+            throw error("expected at most 2^31 - 1 primitives in a scene, found more; split the scene");
+        refs_.push_back(primitive_ref{std::uint32_t(shape_index), std::uint32_t(primitive)});
+        return std::uint32_t(refs_.size() - 1);
+    }
+
+    void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
+    {
+        const primitive_ref& ref = refs_[h.id];
+        const shape& item = scene_->shapes[ref.shape];
+        if (const sphere* ball = std::get_if<sphere>(&item)) {
+            hit_sphere(*ball, r, tmin, tmax, rec); // the same call as in the search: the same root
+            refine_sphere_hit(*ball, r, rec);
+        } else {
+            // the corners as packed (the same numbers as in the shape)
+            const real* v = h.corners;
+            const int k = h.stride;
+            fill_triangle_record(vec3(v[0], v[k], v[2 * k]), vec3(v[3 * k], v[4 * k], v[5 * k]),
+                                 vec3(v[6 * k], v[7 * k], v[8 * k]), r, triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
+            if (const triangle* tri = std::get_if<triangle>(&item))
+                rec.material = tri->material;
+            else
+                complete_mesh_hit(std::get<mesh>(item), ref.primitive, rec);
+        }
+        rec.shape = ref.shape;
+        rec.primitive = ref.primitive;
+    }
+
+    const scene* scene_ = nullptr;
+    accelerator_kind kind_ = accelerator_kind::flat;
+    std::vector<primitive_ref> refs_;
+    std::vector<packed_primitive> flat_;
+    bvh tree_;
+};
+
+} // namespace rt
