@@ -30,8 +30,6 @@ namespace {
 using rt::real;
 using rt::vec3;
 
-constexpr bool in_float = std::is_same_v<real, float>;
-const real tol = in_float ? real(1e-5) : real(1e-12);
 
 // --- meshes built here ------------------------------------------------------
 

@@ -63,13 +63,6 @@ shadow_count count_errors(const shadow_scene& q, Visible&& visible)
     return count;
 }
 
-const auto robust = [](const rt::accelerator& accel, const rt::hit_record& hit, const rt::light_sample& sample) {
-    return rt::light_visible(accel, hit, sample);
-};
-const auto fixed_epsilon = [](const rt::accelerator& accel, const rt::hit_record& hit,
-                              const rt::light_sample& sample) {
-    return rt::light_visible_fixed_epsilon(accel, hit, sample, rt::real(1e-4));
-};
 
 } // namespace
 

@@ -32,9 +32,7 @@ using rt::real;
 using rt::vec3;
 
 constexpr bool in_float = std::is_same_v<real, float>;
-const real tol = in_float ? real(1e-5) : real(1e-12);
-
-bool near(real got, real want, real eps = tol)
+bool near(real got, real want, real eps)
 {
     return std::fabs(got - want) <= eps * std::max(real(1), std::fabs(want));
 }

@@ -12,11 +12,6 @@
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
 
-namespace {
-
-const rt::real tol = rt::real(1e-5);
-
-} // namespace
 
 TEST_CASE("to_byte: 0 and 1 are exact, NaN and negatives become 0")
 {

@@ -38,14 +38,9 @@ namespace {
 using rt::real;
 using wide = long double;
 
-constexpr bool real_is_float = std::is_same<real, float>::value;
 /// The accuracy bound of the stable method, in units in the last place of t.
 constexpr double ulp_bound = 4;
 const real infinity = std::numeric_limits<real>::infinity();
-
-/// Whether long double is wide enough to serve as "exact" for rt::real: it
-/// must carry at least 10 more bits (float: always; double: x87 long double).
-constexpr bool reference_is_exact = std::numeric_limits<wide>::digits >= std::numeric_limits<real>::digits + 10;
 
 using hit_function = bool (*)(const rt::sphere&, const rt::ray&, real, real, rt::hit_record&);
 struct method {
@@ -69,31 +64,6 @@ double error_ulps(real got, wide exact)
     return double(std::fabs(wide(got) - exact) / ulp_at(exact));
 }
 
-/// The stable method as the chapter gives it, with c = f.f - R^2 in real: the
-/// library forms c in a wider type instead (include/rt/sphere.hpp), and the
-/// ground table shows why. Only t is needed here.
-bool hit_sphere_chapter_c_in_real(const rt::sphere& s, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec)
-{
-    const rt::vec3 f = r.origin - s.center;
-    const rt::vec3& d = r.direction;
-    const real R = s.radius;
-    const real a = glm::dot(d, d);
-    const real b = glm::dot(f, d);
-    const real c = glm::dot(f, f) - R * R;
-    const rt::vec3 d_unit = d / std::sqrt(a);
-    const rt::vec3 perpendicular = f - glm::dot(f, d_unit) * d_unit;
-    const real discriminant = a * (R * R - glm::dot(perpendicular, perpendicular));
-    if (!(discriminant >= 0))
-        return false;
-    const real q = -(b + std::copysign(std::sqrt(discriminant), b));
-    const real t0 = std::min(c / q, q / a), t1 = std::max(c / q, q / a);
-    const real t = tmin <= t0 ? t0 : t1;
-    if (!(tmin <= t && t <= tmax))
-        return false;
-    rec.t = t;
-    return true;
-}
-const method chapter_c_in_real{"chapter, c in real", hit_sphere_chapter_c_in_real};
 
 real next_up(real x) { return std::nextafter(x, infinity); }
 real next_down(real x) { return std::nextafter(x, -infinity); }
@@ -172,10 +142,6 @@ struct summary {
     }
 };
 
-constexpr int fan_size = 256;
-constexpr real fan_reach = real(0.9); // grazing oblique rays are ill-conditioned: see the doc
-constexpr real miss_reach_min = real(1.1), miss_reach_max = real(2); // rays that pass the sphere
-const real grazing_h = real(1) - real(1) / real(1024); // 1 - 2^-10: passes 0.001 R inside the silhouette
 
 /// One row of the distance table.
 struct distance_row {
