@@ -106,6 +106,12 @@ if(EXISTS "${folder}/readonly")
 endif()
 
 # --- check it ----------------------------------------------------------------
+# In a student kit, an input the camera rules refuse reaches the stage-01
+# exercise first: exit 3 names it, and the case cannot be judged yet.
+if("${exit_code}" STREQUAL "3" AND err MATCHES "not done yet: stage")
+  message("SKIPPED: ${err}")
+  return()
+endif()
 get_filename_component(program_name "${PROGRAM}" NAME_WE)
 set(problems "")
 if(NOT "${exit_code}" STREQUAL "1")

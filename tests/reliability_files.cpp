@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <map>
 #include <sstream>
@@ -97,6 +98,16 @@ struct outcome {
     int signal = 0;
     std::string out, err;
 };
+
+/// In a student kit a program may stop at an exercise not written yet (exit
+/// 3): the case cannot be judged there, and says so (ctest marks it skipped).
+bool not_done_yet(const outcome& result)
+{
+    if (result.exit_code != 3 || result.err.find("not done yet: stage") == std::string::npos)
+        return false;
+    std::cout << "SKIPPED: " << result.err << std::flush;
+    return true;
+}
 
 /// Runs argv[0] (a path) with the arguments, in `folder`; stdout and stderr go
 /// to files beside the folder. `prefix` (a shell command such as "ulimit -f 20")
@@ -425,7 +436,7 @@ TEST_CASE("an output that cannot be written says why: a 300-byte name, a file as
 TEST_CASE("a name close to the longest a folder allows is written: the temporary name is shortened")
 {
     const fs::path folder = scratch("long_but_legal");
-    const std::string name = std::string(250, 'b') + ".ppm"; // 254 bytes: its temporary name would be 275
+    const std::string name = std::string(250, 'b') + ".pfm"; // 254 bytes: its temporary name would be 275
     rt::save_image(folder / name, rt::image(2, 2, rt::color(0.5f)), 1.0f);
     CHECK(fs::exists(folder / name));
     CHECK(std::distance(fs::directory_iterator(folder), fs::directory_iterator()) == 1);
@@ -446,6 +457,8 @@ TEST_CASE("the file size limit (SIGXFSZ, ulimit -f) is a write error: one line, 
         if (name == "stage08_output")
             args.push_back("--quiet");
         const outcome result = run(folder, args, "ulimit -f 40");
+        if (not_done_yet(result))
+            continue;
         check_refused(result, before, folder,
                       {"out.pfm: expected to write the file, found a write error (the file size limit"}, true);
     }
@@ -460,6 +473,8 @@ TEST_CASE("stage03 writes its five images all or none: a write error on the thir
     write_file(folder / "s.scene", "image 300 200\nsphere center 0 0 -3 radius 1\n");
     const auto before = snapshot(folder);
     const outcome result = run(folder, {program("stage03_sphere"), "s.scene", "-o", "p"}, "ulimit -f 200");
+    if (not_done_yet(result))
+        return;
     // before: p-hit.png and p-normal.png were left, the other three missing
     check_refused(result, before, folder, {"p-normal.pfm: expected to write the file, found a write error"});
 

@@ -864,7 +864,7 @@ TEST_CASE("empty models: no faces, or zero-area faces only, are one clear error"
 
 TEST_CASE("text: a scene file with a byte order mark and CR LF reads like one without")
 {
-    const std::string scene = "image 4 3\r\ncamera perspective eye 0 0 5 look_at 0 0 0\r\nsphere center 0 0 0 radius 1\r\n";
+    const std::string scene = "image 4 3\r\nbackground 0 0 0\r\nsphere center 0 0 0 radius 1\r\n";
     CHECK(scene_error(scene).empty());
     CHECK(scene_error("\xEF\xBB\xBF" + scene).empty());
     // columns count from the character after the mark
