@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <ctime>
 #include <iomanip>
 #include <iostream>
@@ -111,11 +112,18 @@ std::vector<pixel_hit> trace_image(const Accelerator& world, const rt::ray_gener
 {
     std::vector<pixel_hit> hits(std::size_t(gen.nx) * std::size_t(gen.ny));
     const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    // an exception in a worker (an exercise not done yet, say) is kept and
+    // thrown again here, after every thread has stopped: never std::terminate
+    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
     auto rows = [&](int first) {
-        for (int j = first; j < gen.ny; j += threads)
-            for (int i = 0; i < gen.nx; ++i)
-                hits[std::size_t(gen.ny - 1 - j) * std::size_t(gen.nx) + std::size_t(i)] =
-                    trace_one(world, rt::pixel_ray(gen, i, j), geometric);
+        try {
+            for (int j = first; j < gen.ny; j += threads)
+                for (int i = 0; i < gen.nx; ++i)
+                    hits[std::size_t(gen.ny - 1 - j) * std::size_t(gen.nx) + std::size_t(i)] =
+                        trace_one(world, rt::pixel_ray(gen, i, j), geometric);
+        } catch (...) {
+            errors[std::size_t(first)] = std::current_exception();
+        }
     };
     std::vector<std::thread> workers;
     for (int t = 1; t < threads; ++t)
@@ -123,6 +131,9 @@ std::vector<pixel_hit> trace_image(const Accelerator& world, const rt::ray_gener
     rows(0);
     for (std::thread& w : workers)
         w.join();
+    for (const std::exception_ptr& error : errors)
+        if (error)
+            std::rethrow_exception(error);
     return hits;
 }
 
