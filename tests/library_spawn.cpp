@@ -4,6 +4,7 @@
 // front still blocks it; a ray leaving a sphere does not re-hit it. The
 // intersection is the library's (unmarked) watertight test and stable sphere.
 #include "rt_doctest.hpp"
+#include "test_scenes.hpp"
 
 #include <array>
 #include <cmath>
@@ -28,81 +29,13 @@
 
 namespace {
 
+using namespace rt_test; // test_scenes.hpp
+
 using rt::real;
 using rt::vec3;
 
-constexpr bool in_float = std::is_same_v<real, float>;
-bool near(real got, real want, real eps)
-{
-    return std::fabs(got - want) <= eps * std::max(real(1), std::fabs(want));
-}
 
-// --- meshes built here ------------------------------------------------------
 
-/// A unit icosahedron subdivided `levels` times (each triangle into four, the
-/// new corners pushed onto the sphere), then scaled and moved. Corners shared
-/// by neighbouring triangles are one index, so the mesh is closed; every face
-/// is counter-clockwise seen from outside.
-rt::mesh icosphere(int levels, const vec3& center, real radius)
-{
-    const double g = (1 + std::sqrt(5.0)) / 2;
-    std::vector<std::array<double, 3>> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<rt::index3> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    auto unit = [](std::array<double, 3> v) {
-        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        return std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l};
-    };
-    for (auto& v : p)
-        v = unit(v);
-    for (int level = 0; level < levels; ++level) {
-        std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-        auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            const auto found = middle.find(key);
-            if (found != middle.end())
-                return found->second;
-            p.push_back(unit({p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]}));
-            const auto index = std::uint32_t(p.size() - 1);
-            middle[key] = index;
-            return index;
-        };
-        std::vector<rt::index3> finer;
-        for (const rt::index3& f : faces) {
-            const std::uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-            finer.push_back({f[0], ab, ca});
-            finer.push_back({f[1], bc, ab});
-            finer.push_back({f[2], ca, bc});
-            finer.push_back({ab, bc, ca});
-        }
-        faces = finer;
-    }
-    rt::mesh m;
-    for (const auto& v : p)
-        m.positions.push_back(center + radius * vec3(real(v[0]), real(v[1]), real(v[2])));
-    for (rt::index3 f : faces) { // make every face counter-clockwise seen from outside
-        const vec3 a = m.positions[f[0]] - center, b = m.positions[f[1]] - center, c = m.positions[f[2]] - center;
-        if (glm::dot(glm::cross(b - a, c - a), a + b + c) < 0)
-            std::swap(f[1], f[2]);
-        m.triangles.push_back(f);
-    }
-    return m;
-}
-
-rt::mesh cube_from_file()
-{
-    return rt::load_obj(RT_TEST_DATA_DIR "/cube.obj").geometry;
-}
-
-rt::scene scene_of(rt::mesh m)
-{
-    rt::scene s;
-    s.shapes.emplace_back(std::move(m));
-    return s;
-}
 
 /// Targets on a closed mesh's surface that rays from inside are aimed at,
 /// each with the triangles it lies on: every vertex (its fan), every edge's
