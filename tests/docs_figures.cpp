@@ -32,6 +32,7 @@
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
 #include <rt/error.hpp>
+#include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
 #include <rt/scene.hpp>

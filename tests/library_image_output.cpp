@@ -29,11 +29,12 @@
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
 #include <rt/image.hpp>
+#include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
 #include <rt/progress.hpp>
 #include <rt/random.hpp>
 #include <rt/ray.hpp>
-#include <rt/render_setup.hpp>
+#include <rt/aov.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/tonemap.hpp>

@@ -8,7 +8,6 @@
 #include <string>
 #include <variant>
 
-#include <rt/render_setup.hpp>
 #include <rt/scene_loader.hpp>
 
 namespace {

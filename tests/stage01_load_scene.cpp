@@ -8,7 +8,8 @@
 #include <string>
 #include <variant>
 
-#include <rt/render_setup.hpp>
+#include <rt/camera_statement.hpp>
+#include <rt/camera_text.hpp>
 #include <rt/scene_loader.hpp>
 
 namespace {

@@ -11,7 +11,7 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/raytracer.hpp>
-#include <rt/render_setup.hpp>
+#include <rt/radiance.hpp>
 #include <rt/scene.hpp>
 
 namespace {

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "byte_level.hpp"
 #include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
 #include "image.hpp"
 #include "tonemap.hpp"
@@ -31,16 +32,6 @@ struct encoding {
     transfer_kind transfer = transfer_kind::srgb;
     float gamma = 2.2f;                          ///< used when transfer == gamma
 };
-
-/// Given (not an exercise): the nearest of the 256 levels k / 255 to a value v
-/// that is already in [0, 1], halves rounded up: round(255 v). v * 255 + 0.5
-/// is in [0.5, 255.5], and the conversion truncates. The caller keeps v in
-/// [0, 1] (and not NaN): the stage-08 exercise quantize below, and the early
-/// stages' to_byte (image_io.hpp), each with its own rule for other values.
-inline std::uint8_t nearest_byte_level(float v)
-{
-    return std::uint8_t(v * 255.0f + 0.5f);
-}
 
 /// An encoded value in [0, 1] to one of the 256 byte levels: round(255 v),
 /// halves rounded up; values below 0 (and NaN) give 0, above 1 give 255.

@@ -7,7 +7,7 @@
 #pragma once
 
 #include <cstddef>
-#include <cstddef>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -89,5 +89,17 @@ class exercise_not_done : public std::logic_error {
 public:
     explicit exercise_not_done(const std::string& what) : std::logic_error(what) {}
 };
+
+namespace detail {
+
+/// A number for a message: six significant digits, as printf's %g.
+inline std::string short_number(double x)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", x);
+    return text;
+}
+
+} // namespace detail
 
 } // namespace rt

@@ -5,7 +5,7 @@
 //    gamma): clamp each linear channel to [0, 1], encode with a plain gamma,
 //    quantise to 8 bits. It needs nothing from stage 08, so stage programs 02-07
 //    can save images before the student has written the colour pipeline.
-//  - the colour pipeline of stage 08 (encoding.hpp: exposure, tone map, sRGB or
+//  - the colour pipeline of stage 08 (encoded_output.hpp and encoding.hpp: exposure, tone map, sRGB or
 //    gamma, quantisation), selected by passing an rt::encoding.
 // PFM keeps the linear floats exactly (no exposure, no tone map), for depth and
 // normal buffers, for comparisons and for merging. Every writer goes through
@@ -25,7 +25,7 @@
 
 #include "atomic_file.hpp"
 #include "detail/stb_png.hpp"
-#include "encoding.hpp"
+#include "byte_level.hpp"
 #include "error.hpp"
 #include "image.hpp"
 
@@ -60,14 +60,6 @@ inline void write_ppm(std::ostream& out, const image& img, float gamma = 2.2f)
     const std::vector<std::uint8_t> bytes = to_rgb8(img, gamma);
     out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     // RT_EXERCISE_END
-}
-
-/// Binary PPM of the image through the colour pipeline (encoding.hpp).
-inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
-{
-    out << "P6\n" << img.width << ' ' << img.height << "\n255\n";
-    const std::vector<std::uint8_t> bytes = encode_image(img, enc);
-    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 /// PNG bytes of 8-bit RGB pixels, through the vendored stb_image_write.
@@ -209,29 +201,12 @@ inline output_file image_file(const std::filesystem::path& path, const image& im
         [pixels, gamma] { return to_rgb8(*pixels, gamma); });
 }
 
-/// What save_image(path, img, enc) writes, as an output_file; `img` must outlive the write.
-inline output_file image_file(const std::filesystem::path& path, const image& img, const encoding& enc)
-{
-    const image* pixels = &img;
-    return detail::image_file_by_extension(
-        path, img, [pixels, enc](std::ostream& out) { write_ppm(out, *pixels, enc); },
-        [pixels, enc] { return encode_image(*pixels, enc); });
-}
-
 /// Writes the image to `path`, atomically, in the format its extension names:
 /// .png and .ppm (8-bit: clamped, plain gamma, see to_byte) or .pfm (linear floats).
-/// This is the early stages' writer; stage 08 passes an rt::encoding instead.
+/// This is the early stages' writer; stage 08 passes an rt::encoding (encoded_output.hpp).
 inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
 {
     const output_file file = image_file(path, img, gamma);
-    write_atomically(file.target, file.write);
-}
-
-/// Writes the image to `path`, atomically: .png and .ppm through the colour
-/// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
-inline void save_image(const std::filesystem::path& path, const image& img, const encoding& enc)
-{
-    const output_file file = image_file(path, img, enc);
     write_atomically(file.target, file.write);
 }
 

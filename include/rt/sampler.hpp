@@ -205,4 +205,11 @@ inline const char* name_of(sampler_kind kind)
     return "center";
 }
 
+/// The sampler used when none is named: one ray through each pixel centre for
+/// 1 sample per pixel (the image of stages 02-07), jittered otherwise.
+inline sampler_kind default_sampler(int samples_per_pixel)
+{
+    return samples_per_pixel == 1 ? sampler_kind::center : sampler_kind::jittered;
+}
+
 } // namespace rt

@@ -7,9 +7,9 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
+#include "error.hpp"
 #include "hit_record.hpp"
 #include "ray.hpp"
 #include "rounding.hpp"
@@ -69,17 +69,6 @@ inline void fill_sphere_record(const sphere& s, const ray& r, real t, hit_record
     rec.primitive = 0;
     rec.b1 = rec.b2 = 0;
 }
-
-namespace detail {
-
-inline std::string short_number(double x)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%.6g", x);
-    return text;
-}
-
-} // namespace detail
 
 /// The parts of the loader's one-line message for a sphere that does not fit
 /// its position: what was expected, what was found, and the hint.

@@ -24,6 +24,7 @@
 #include <rt/encoding.hpp>
 #include <rt/filter.hpp>
 #include <rt/image.hpp>
+#include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>

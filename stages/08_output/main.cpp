@@ -8,7 +8,9 @@
 //
 // Each sample's colour is rt::ray_color (stages 05-07) over the scene's
 // rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
-// include/rt/render_setup.hpp, shared with the viewer (stages/viewer).
+// include/rt/radiance.hpp, shared with the viewer (stages/viewer). The
+// renderer, the BVH and the stage-07 colour are compiled once
+// (stages/common/support_frame.cpp); this file holds stage 08's own part.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,22 +22,22 @@
 #include <sstream>
 #include <string>
 
+#include <rt/aov.hpp>
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
-#include <rt/filter.hpp>
+#include <rt/error.hpp>
 #include <rt/image_io.hpp>
+#include <rt/os_error.hpp>
 #include <rt/progress.hpp>
-#include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
 #include <rt/scene.hpp>
+#include <rt/scene_input.hpp>
 #include <rt/tonemap.hpp>
-
-#include <rt/raytracer.hpp>
 
 #include "pixel_story.hpp"
 #include "render_arguments.hpp"
 #include "stage_main.hpp"
+#include "support_frame.hpp"
 #include "support.hpp"
 
 namespace {
@@ -115,7 +117,7 @@ settings read_arguments(stage::arguments& args)
 }
 
 /// An analytic test pattern of the film position (x, y) in an nx x ny image.
-rt::radiance_function make_pattern(pattern_kind pattern, int nx, int ny)
+std::function<rt::color(const rt::ray&, rt::sample_context&)> make_pattern(pattern_kind pattern, int nx, int ny)
 {
     const double cx = nx / 2.0, cy = ny / 2.0;
     if (pattern == pattern_kind::zoneplate) {
@@ -193,17 +195,8 @@ int main(int argc, char** argv)
 
         if (set.pixel.wanted) {
             // the ray through the pixel's centre, traced by the stage-07 colour function
-            const stage::world w(scene);
-            const rt::ray_generator gen = rt::make_ray_generator(scene.cam, options.width, options.height);
-            stage::story st;
-            st.program = "stage08_output";
-            stage::place_pixel(st, set.pixel.column, set.pixel.row, gen.nx, gen.ny);
-            st.camera = rt::pixel_ray(gen, st.i, st.j);
-            st.linear = rt::ray_color(scene, stage::recording<stage::world>(w, st.queries), st.camera);
-            stage::name_queries(st);
-            stage::explain_lights(st, scene, true, false,
-                                  [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,
-                                     const rt::color& I) { return rt::blinn_phong(m, n, v, l, I); });
+            stage::story st =
+                stage::shaded_story(scene, "stage08_output", set.pixel.column, set.pixel.row, options.width, options.height);
             const rt::encoding& enc = render.encoding;
             const rt::color exposed = rt::apply_exposure(st.linear, enc.exposure);
             const rt::color mapped = rt::apply_tonemap(exposed, enc.tonemap);
@@ -228,21 +221,18 @@ int main(int argc, char** argv)
             return 0;
         }
 
-        rt::radiance_function radiance;
-        rt::ray_source ray_at;
-        if (set.pattern != pattern_kind::none) {
-            radiance = make_pattern(set.pattern, options.width, options.height);
-            ray_at = [](rt::real x, rt::real y) { return rt::ray{rt::vec3(x, y, 0), rt::vec3(0, 0, -1)}; };
-        } else {
-            radiance = rt::make_radiance(scene, render.aov);
-            ray_at = rt::camera_rays(scene.cam, options.width, options.height);
-        }
-
+        // the renderer, the BVH and the stage-07 colour are compiled once
+        // (support_frame.cpp): an edit to a stage-08 exercise rebuilds none of them
         rt::progress_bar bar(std::cerr, !set.quiet && rt::stderr_is_terminal());
-        const rt::render_result result = rt::render(options, ray_at, radiance, bar.callback());
+        const rt::render_result result =
+            set.pattern != pattern_kind::none
+                ? stage::render_image(
+                      options, [](rt::real x, rt::real y) { return rt::ray{rt::vec3(x, y, 0), rt::vec3(0, 0, -1)}; },
+                      make_pattern(set.pattern, options.width, options.height), bar.callback())
+                : stage::render_scene(scene, render.aov, options, bar.callback());
         bar.finish();
 
-        rt::save_image(set.output, result.pixels, rt::output_encoding(render.aov, render.encoding, result.pixels));
+        stage::save_encoded(set.output, result.pixels, render.aov, render.encoding);
         if (!set.quiet)
             std::cerr << "wrote " << set.output << ": " << rt::summary_line(result.stats) << " ("
                       << rt::name_of(options.sampler) << ", " << rt::name_of(options.reconstruction.kind) << " "

@@ -14,13 +14,15 @@
 #include <rt/encoding.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
-#include <rt/render_setup.hpp>
+#include <rt/aov.hpp>
+#include <rt/camera_statement.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/scene.hpp>
 #include <rt/tonemap.hpp>
 
 #include "stage_main.hpp"
+#include "support.hpp"
 
 namespace stage {
 
@@ -179,9 +181,8 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
 /// The scene or OBJ of the settings, with --camera applied.
 inline rt::scene load_render_input(const render_settings& s)
 {
-    rt::load_options options;
-    options.obj.strict = s.strict;
-    rt::scene scene = rt::load_input(s.input, s.width, s.height, options);
+    // stage::load_input: the loaders are compiled once (support_input.cpp)
+    rt::scene scene = stage::load_input(s.input, s.width, s.height, s.strict);
     if (s.camera)
         scene.cam = *s.camera;
     if (s.max_depth)

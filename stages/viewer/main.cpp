@@ -31,6 +31,7 @@
 
 #include <rt/atomic_file.hpp>
 #include <rt/camera.hpp>
+#include <rt/encoded_output.hpp>
 #include <rt/encoding.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>

@@ -1,0 +1,71 @@
+// encoded_output.hpp - images written through stage 08's colour pipeline
+// (encoding.hpp: exposure, tone map, transfer function, quantisation), in the
+// formats of image_io.hpp, and the pipeline each kind of render is stored with.
+//
+//     rt::save_image("out.png", pixels, rt::encoding{});   // sRGB, clamp tone map
+//     rt::save_image("depth.png", pixels, rt::output_encoding(rt::aov_kind::depth, rt::encoding{}, pixels));
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "aov.hpp"
+#include "atomic_file.hpp"
+#include "encoding.hpp"
+#include "image.hpp"
+#include "image_io.hpp"
+
+namespace rt {
+
+/// Binary PPM of the image through the colour pipeline (encoding.hpp).
+inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
+{
+    out << "P6\n" << img.width << ' ' << img.height << "\n255\n";
+    const std::vector<std::uint8_t> bytes = encode_image(img, enc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+/// What save_image(path, img, enc) writes, as an output_file; `img` must outlive the write.
+inline output_file image_file(const std::filesystem::path& path, const image& img, const encoding& enc)
+{
+    const image* pixels = &img;
+    return detail::image_file_by_extension(
+        path, img, [pixels, enc](std::ostream& out) { write_ppm(out, *pixels, enc); },
+        [pixels, enc] { return encode_image(*pixels, enc); });
+}
+
+/// Writes the image to `path`, atomically: .png and .ppm through the colour
+/// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
+inline void save_image(const std::filesystem::path& path, const image& img, const encoding& enc)
+{
+    const output_file file = image_file(path, img, enc);
+    write_atomically(file.target, file.write);
+}
+
+/// How `pixels`, an image of `aov`, is stored in 8 bits (PNG, PPM; PFM keeps
+/// the floats as they are): the shaded image through `shaded`; an AOV is data,
+/// not light, so it is stored without tone map or transfer curve (clamp, linear
+/// bytes). Distances are not in [0, 1], so the depth image is scaled by the
+/// image's own farthest hit: 0 (black) at the eye, 255 at the farthest point.
+inline encoding output_encoding(aov_kind aov, const encoding& shaded, const image& pixels)
+{
+    if (aov == aov_kind::none)
+        return shaded;
+    encoding data{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
+    if (aov == aov_kind::depth) {
+        float farthest = 0.0f;
+        for (const color& c : pixels.pixels)
+            if (std::isfinite(c.r))
+                farthest = std::max(farthest, c.r);
+        if (farthest > 0.0f)
+            data.exposure = -std::log2(farthest); // scale by 2^exposure = 1 / farthest
+    }
+    return data;
+}
+
+} // namespace rt

@@ -1,0 +1,109 @@
+// radiance.hpp - what rt::render (renderer.hpp) needs from a scene: the
+// camera's rays, and the colour each ray brings back (the shaded colour of
+// stages 05-07, or a debug image, aov.hpp).
+//
+//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
+//     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
+//     rt::render_result out = rt::render(options, rays, radiance);
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+
+#include "accelerator.hpp"
+#include "aov.hpp"
+#include "camera.hpp"
+#include "hit_record.hpp"
+#include "ray.hpp"
+#include "ray_image.hpp"
+#include "raytracer.hpp"
+#include "renderer.hpp"
+#include "sampler.hpp"
+#include "scene.hpp"
+#include "vec.hpp"
+
+namespace rt {
+
+/// A ray source for rt::render: film position in pixels -> ray.
+using ray_source = std::function<ray(real, real)>;
+/// A radiance function for rt::render: the colour a ray brings back.
+using radiance_function = std::function<color(const ray&, sample_context&)>;
+
+/// The camera's rays for a full image of nx x ny pixels (camera.hpp).
+inline ray_source camera_rays(const camera& cam, int nx, int ny)
+{
+    const ray_generator gen = make_ray_generator(cam, nx, ny);
+    return [gen](real x, real y) { return generate_ray(gen, x, y); };
+}
+
+/// An accelerator seen through a counter of the queries made with it, so a
+/// render reports its shadow and mirror rays as well as its camera rays. One
+/// sample's own counter: it is made per sample, never shared between threads.
+struct counting_accelerator {
+    const accelerator* accel;
+    std::uint64_t* queries;
+
+    bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
+    {
+        ++*queries;
+        return accel->closest_hit(r, tmin, tmax, rec);
+    }
+    bool any_hit(const ray& r, real tmin, real tmax) const
+    {
+        ++*queries;
+        return accel->any_hit(r, tmin, tmax);
+    }
+};
+
+/// What each sample computes, for scene `s` whose accelerator (stage 04) is
+/// `accel`: the shaded colour of stages 05-07 (rt::ray_color) or a debug image.
+/// The function refers to `s` and `accel` (it shares ownership of `accel`;
+/// `s` must outlive it) and neither may change while a render runs; between
+/// renders, what it reads at each call (s.max_depth, lights, materials) may
+/// change, while new shapes need a new accelerator.
+inline radiance_function make_radiance(const scene& s, std::shared_ptr<const accelerator> accel, aov_kind aov)
+{
+    const real far = std::numeric_limits<real>::infinity();
+    switch (aov) {
+    case aov_kind::rays:
+        return [](const ray& r, sample_context&) { return direction_to_color(r.direction); };
+    case aov_kind::depth:
+        // the distance along the ray, t |d|; 0 where the ray misses
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color(float(hit.t * glm::length(r.direction))) : color(0.0f);
+        };
+    case aov_kind::normal:
+        // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color((hit.normal + vec3(1)) * real(0.5)) : color(0.0f);
+        };
+    case aov_kind::position:
+        return [accel, far](const ray& r, sample_context&) {
+            hit_record hit;
+            return accel->closest_hit(r, 0, far, hit) ? color(hit.point) : color(0.0f);
+        };
+    case aov_kind::none: break;
+    }
+    const scene* shaded = &s;
+    return [accel, shaded](const ray& r, sample_context& context) {
+        std::uint64_t traced = 0;
+        const color L = ray_color(*shaded, counting_accelerator{accel.get(), &traced}, r);
+        context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count
+        return L;
+    };
+}
+
+/// The same, building the accelerator of `s` (except for the rays image, which needs none).
+inline radiance_function make_radiance(const scene& s, aov_kind aov)
+{
+    if (aov == aov_kind::rays)
+        return make_radiance(s, nullptr, aov);
+    // built once, shared by every worker thread (closest_hit and any_hit are const)
+    return make_radiance(s, std::make_shared<const accelerator>(s), aov);
+}
+
+} // namespace rt

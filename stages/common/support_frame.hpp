@@ -1,0 +1,51 @@
+// support_frame.hpp - stage 08's whole frame, compiled once: the threaded
+// renderer over the library's BVH and the stage-07 colour (or a debug image)
+// and the traced story of one pixel (support_frame.cpp), and the image stored
+// through the colour pipeline (support_output.cpp). Only the last includes the
+// stage-08 exercises (encoding.hpp), so an edit to a tone map rebuilds it and
+// stage 08's own files, never the renderer or the BVH.
+//
+//     const rt::render_result out = stage::render_scene(scene, rt::aov_kind::none, options, bar.callback());
+//     stage::save_encoded("out.png", out.pixels, rt::aov_kind::none, rt::encoding{});
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include <rt/aov.hpp>
+#include <rt/image.hpp>
+#include <rt/ray.hpp>
+#include <rt/renderer.hpp>
+#include <rt/scene.hpp>
+#include <rt/vec.hpp>
+
+#include "pixel_story.hpp"
+
+namespace rt {
+struct encoding;
+}
+
+namespace stage {
+
+/// rt::render of the colour `radiance` gives each ray of `rays` (film position in pixels -> ray).
+rt::render_result render_image(const rt::render_options& options,
+                               const std::function<rt::ray(rt::real, rt::real)>& rays,
+                               const std::function<rt::color(const rt::ray&, rt::sample_context&)>& radiance,
+                               const rt::progress_callback& progress);
+
+/// rt::render of scene `s` through its camera: the shaded colour of stages
+/// 05-07 (rt::make_radiance, the library's BVH) or the debug image `aov`.
+rt::render_result render_scene(const rt::scene& s, rt::aov_kind aov, const rt::render_options& options,
+                               const rt::progress_callback& progress);
+
+/// The story of pixel (column, row) of an nx x ny image of scene `s`
+/// (pixel_story.hpp): its centre's ray traced by the stage-07 colour
+/// (rt::ray_color over the library's BVH), every query recorded and named,
+/// the light terms worked out; stage 08 adds what its pipeline makes of it.
+story shaded_story(const rt::scene& s, const std::string& program, int column, int row, int nx, int ny);
+
+/// rt::save_image through the colour pipeline: `enc` for the shaded image,
+/// rt::output_encoding's data encoding for a debug image of kind `aov`.
+void save_encoded(const std::string& path, const rt::image& img, rt::aov_kind aov, const rt::encoding& enc);
+
+} // namespace stage
