@@ -532,7 +532,7 @@ TEST_CASE("outputs: an output path that is one of the inputs, however spelled, i
     std::ofstream(folder.path() / "models" / "t.obj") << triangle_obj;
     const fs::path scene_file = folder.write("a.scene", "mesh models/t.obj\nsphere\n");
     const rt::scene s = rt::load_scene(scene_file);
-    const std::vector<fs::path> inputs = rt::input_files(scene_file, s);
+    const std::vector<fs::path> inputs = rt::files_read(scene_file, s);
     REQUIRE(inputs.size() == 2);
     CHECK(fs::equivalent(inputs[0], scene_file));
     CHECK(fs::equivalent(inputs[1], folder.path() / "models" / "t.obj"));

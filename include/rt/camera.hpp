@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "camera_model.hpp"
 #include "error.hpp"
@@ -71,13 +72,41 @@ struct ray_generator {
     int nx = 1, ny = 1;
 };
 
+namespace detail {
+
+inline bool finite(const vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+} // namespace detail
+
+/// The ray generator of `cam` for an nx x ny image. A camera from a scene file
+/// was checked by the loader (stage 01); one built in code is checked here, on
+/// what it gives: an rt::error, never rays of NaN, when it has no frame (eye
+/// at look_at, up parallel to the view direction), an empty or infinite
+/// window (a field of view outside (0, 180) degrees) or a focal distance that
+/// is not a positive number.
 inline ray_generator make_ray_generator(const camera& cam, int nx, int ny)
 {
+    if (nx < 1 || ny < 1)
+        throw error("camera: expected an image of at least 1 x 1 pixels, found " + std::to_string(nx) + " x " +
+                    std::to_string(ny));
+    if (!detail::finite(cam.eye) || !detail::finite(cam.look_at) || !detail::finite(cam.up))
+        throw error("camera: expected finite eye, look_at and up, found a NaN or an infinity");
+    if (!(cam.focal_distance > 0 && std::isfinite(cam.focal_distance)))
+        throw error("camera: expected a focal distance > 0, found " + detail::short_number(double(cam.focal_distance)));
     ray_generator gen;
     gen.kind = cam.kind;
     gen.e = cam.eye;
     gen.basis = make_frame(cam.eye, cam.look_at, cam.up);
+    if (!detail::finite(gen.basis.u) || !detail::finite(gen.basis.v) || !detail::finite(gen.basis.w))
+        throw error("camera: expected a camera frame, found none (NaN); eye must differ from look_at and up must "
+                    "not be parallel to look_at - eye");
     gen.plane = effective_window(cam, nx, ny);
+    const window& p = gen.plane;
+    if (!(p.l < p.r && p.b < p.t && std::isfinite(p.r - p.l) && std::isfinite(p.t - p.b)))
+        throw error("camera: expected a window with l < r and b < t, all finite, found " +
+                    detail::short_number(double(p.l)) + " " + detail::short_number(double(p.r)) + " " +
+                    detail::short_number(double(p.b)) + " " + detail::short_number(double(p.t)) +
+                    "; a field of view must lie in (0, 180) degrees");
     gen.d = cam.focal_distance;
     gen.nx = nx;
     gen.ny = ny;

@@ -69,10 +69,4 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& n)
     return result;
 }
 
-/// The textbook's fixed offset, for comparison: p + eps n.
-inline vec3 offset_ray_origin_fixed(const vec3& p, const vec3& n, real eps = real(1e-4))
-{
-    return p + eps * n;
-}
-
 } // namespace rt

@@ -372,16 +372,4 @@ inline scene load_scene(const std::filesystem::path& path, const load_options& o
     return detail::load_scene_stream(in, name, detail::scene_folder(path), options);
 }
 
-/// The files load_scene(path) read to make `s`: the scene file and the OBJ file
-/// of each mesh. A program that writes an output checks it against them first
-/// (rt::check_not_input), so a mistyped command line cannot overwrite an input.
-inline std::vector<std::filesystem::path> input_files(const std::filesystem::path& path, const scene& s)
-{
-    std::vector<std::filesystem::path> files{path};
-    for (const shape& item : s.shapes)
-        if (const mesh* m = std::get_if<mesh>(&item))
-            files.push_back(detail::mesh_path(detail::scene_folder(path), m->source));
-    return files;
-}
-
 } // namespace rt

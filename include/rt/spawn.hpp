@@ -51,7 +51,7 @@ namespace rt {
 
 /// PBR 3rd ed., sec. 3.9.5: the point p moved past its error box p +- p_error
 /// along the unit normal n, to the side of the direction w.
-inline vec3 offset_ray_origin(const vec3& p, const vec3& p_error, const vec3& n, const vec3& w)
+inline vec3 offset_past_error_bounds(const vec3& p, const vec3& p_error, const vec3& n, const vec3& w)
 {
     const real d = glm::dot(glm::abs(n), p_error);
     vec3 offset = d * n;
@@ -83,7 +83,7 @@ inline real grazing_bound(const vec3& w)
     return gamma_n(8) * (std::fabs(w.x) + std::fabs(w.y) + std::fabs(w.z));
 }
 
-/// p + lift, each coordinate rounded away from p (as offset_ray_origin does).
+/// p + lift, each coordinate rounded away from p (as offset_past_error_bounds does).
 inline vec3 add_rounding_away(const vec3& p, const vec3& lift)
 {
     vec3 moved = p + lift;
@@ -111,7 +111,7 @@ inline ray spawn_ray(const hit_record& rec, const vec3& direction)
     const real side = along < 0 ? real(-1) : real(1);
     const real bound = detail::grazing_bound(direction);
     const vec3 d = std::fabs(along) <= bound ? direction + (side * 2 * bound) * n : direction;
-    return ray{offset_ray_origin(rec.point, rec.point_error, n, side * n), d};
+    return ray{offset_past_error_bounds(rec.point, rec.point_error, n, side * n), d};
 }
 
 /// The segment from the hit `rec` to the point `target`: a ray with t = 1 at
@@ -128,7 +128,7 @@ inline ray spawn_ray_to(const hit_record& rec, const vec3& target)
     const vec3 w = target - rec.point;
     const real along = glm::dot(w, n);
     const real side = along < 0 ? real(-1) : real(1);
-    const vec3 origin = offset_ray_origin(rec.point, rec.point_error, n, side * n);
+    const vec3 origin = offset_past_error_bounds(rec.point, rec.point_error, n, side * n);
     // how far the target's height above the true plane can be from `along`:
     // the hit point's error along n, and the uncertainty of w . n itself
     const real uncertainty = glm::dot(glm::abs(n), rec.point_error) + detail::grazing_bound(w);

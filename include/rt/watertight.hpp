@@ -143,7 +143,7 @@ F watertight_t_error(const F x[3], const F y[3], const F z[3], const F X[3], con
 /// float corners and ray, with the bound of the same formula in double, 2^29
 /// times smaller: a t that is truly positive by more than that is accepted. A
 /// ray that starts on the triangle, or behind it as a ray spawned from a hit
-/// does (spawn_ray, offset_ray_origin), has an exact t <= 0, and the double
+/// does (spawn_ray, offset_past_error_bounds), has an exact t <= 0, and the double
 /// bound still refuses it. `v` holds the corners: coordinate j (a.x a.y a.z
 /// b.x ...) at v[j * stride].
 inline bool t_beyond_error_in_double(const watertight_ray& w, const real* v, int stride)
