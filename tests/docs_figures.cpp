@@ -167,9 +167,11 @@ std::string load_message(const std::string& text)
 /// left and row `row` from the top (j = ny - 1 - row from the bottom), through
 /// the library's accelerator, with `colour(scene, accelerator, ray)`.
 template <class Colour>
-rt::color showcase_pixel(const fs::path& root, int column, int row, Colour colour)
+rt::color showcase_pixel(const fs::path& root, int column, int row, Colour colour, int max_depth = -1)
 {
-    const rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
+    rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
+    if (max_depth >= 0) // --max-depth N
+        s.max_depth = max_depth;
     const rt::accelerator accel(s);
     const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
     return colour(s, accel, rt::pixel_ray(gen, column, s.height - 1 - row));
@@ -286,6 +288,9 @@ std::map<std::string, figure_function> figures(const fs::path& root)
             return story_bytes_gamma(showcase_pixel(root, c, r, stage07_colour));
         };
     }
+    all["stage07.showcase_330_150.colour_depth_0.float"] = [root] {
+        return story_colour(showcase_pixel(root, 330, 150, stage07_colour, 0));
+    };
     all["stage08.showcase_290_150.story.float"] = [root] {
         return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), rt::encoding{});
     };
