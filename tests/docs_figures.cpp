@@ -278,7 +278,7 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage05.showcase_330_150.colour.float"] = [root] {
         return story_colour(showcase_pixel(root, 330, 150, stage05_colour));
     };
-    for (const auto& [column, row] : std::vector<std::pair<int, int>>{{330, 150}, {290, 150}}) {
+    for (const auto& [column, row] : std::vector<std::pair<int, int>>{{330, 150}, {290, 150}, {320, 140}}) {
         const int c = column, r = row;
         const std::string at = std::to_string(c) + "_" + std::to_string(r);
         all["stage07.showcase_" + at + ".colour.float"] = [root, c, r] {
