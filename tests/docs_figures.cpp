@@ -369,7 +369,9 @@ int main(int argc, char** argv)
     const std::regex block_marker(R"(^<!-- figure-block: ([A-Za-z0-9_.]+) -->\s*$)");
     int quoted = 0, checked = 0, failures = 0;
     // One quoted figure: the page's text against the code's value.
-    auto compare = [&](const std::string& where, const std::string& name, const std::string& said) {
+    // `block_page`/`block_line`: for a block, the page and the line number of its first line
+    auto compare = [&](const std::string& where, const std::string& name, const std::string& said,
+                       const std::string& block_page = "", std::size_t block_line = 0) {
         ++quoted;
         if (!known.count(name)) {
             std::cout << where << ": figure " << name << ": expected a figure docs_figures computes, found "
@@ -383,10 +385,29 @@ int main(int argc, char** argv)
         if (!code)
             return;
         ++checked;
-        if (said != *code) {
+        if (said == *code)
+            return;
+        ++failures;
+        if (said.find('\n') == std::string::npos && code->find('\n') == std::string::npos) {
             std::cout << where << ": figure " << name << ": the page says '" << said << "', the code gives '" << *code
                       << "'\n";
-            ++failures;
+            return;
+        }
+        // a block: one line for its first line that differs
+        std::istringstream page_lines(said), code_lines(*code);
+        std::string page_line, code_line;
+        for (int k = 1;; ++k) {
+            const bool more_page = bool(std::getline(page_lines, page_line));
+            const bool more_code = bool(std::getline(code_lines, code_line));
+            if (!more_page && !more_code)
+                break;
+            if (more_page != more_code || page_line != code_line) {
+                std::cout << block_page << ":" << block_line + std::size_t(k) - 1 << ": figure " << name
+                          << ": line " << k << " of the block says '"
+                          << (more_page ? page_line : "(nothing)") << "', the code gives '"
+                          << (more_code ? code_line : "(nothing)") << "'\n";
+                break;
+            }
         }
     };
     for (const fs::path& page : pages) {
@@ -414,7 +435,7 @@ int main(int argc, char** argv)
                 std::string said;
                 for (std::size_t b = k + 2; b < end; ++b)
                     said += (b > k + 2 ? "\n" : "") + lines[b];
-                compare(where, name, said);
+                compare(where, name, said, name_of_page, k + 3);
                 k = end;
                 continue;
             }
