@@ -2,6 +2,11 @@
 //
 // A page quotes a number the code produces as
 //     <!-- figure: stage03.far_spheres.textbook_hits.float -->16481<!-- /figure -->
+// or, for several lines a program prints, a fenced block right after a marker line
+//     <!-- figure-block: stage01.showcase_output -->
+//     ```
+//     ...the lines, exactly...
+//     ```
 // This program computes every named figure from the library and reads every
 // page under the folders it is given: a page whose value differs from the
 // code's, or that names a figure this program does not know, is one line
@@ -13,6 +18,7 @@
 //     docs_figures REPO_ROOT            (reads REPO_ROOT/docs and REPO_ROOT/scenes)
 //     docs_figures REPO_ROOT --print    (every figure and its value, for pasting)
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -29,14 +35,17 @@
 #include <variant>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
 #include <rt/error.hpp>
 #include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
+#include <rt/raytracer.hpp>
 #include <rt/scene.hpp>
 #include <rt/scene_loader.hpp>
+#include <rt/shading.hpp>
 #include <rt/sphere.hpp>
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
@@ -92,6 +101,127 @@ std::string sphere_hits(const fs::path& scene_path, Hit hit)
     return std::to_string(hits);
 }
 
+/// printf into a std::string (the stage programs print with printf).
+template <class... Args>
+std::string formatted(const char* format, Args... args)
+{
+    char text[256];
+    std::snprintf(text, sizeof text, format, args...);
+    return text;
+}
+
+/// What stage01_load_scene prints for a scene (stages/01_load_scene/main.cpp,
+/// the same formats), from the library's loader and scene_bounds.
+std::string stage01_output(const fs::path& root, const std::string& relative)
+{
+    const rt::scene s = rt::load_scene(root / relative);
+    auto vector_line = [](const char* name, const rt::vec3& v) {
+        return formatted("  %-8s %12.6g %12.6g %12.6g\n", name, double(v.x), double(v.y), double(v.z));
+    };
+    std::string out = "scene " + relative + "\n";
+    out += formatted("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples,
+                     s.max_depth);
+    const rt::camera& cam = s.cam;
+    out += std::string("camera ") + (cam.kind == rt::projection::perspective ? "perspective" : "orthographic") + "\n";
+    out += vector_line("eye", cam.eye) + vector_line("look_at", cam.look_at) + vector_line("up", cam.up);
+    if (cam.plane)
+        out += formatted("  window   l %g r %g b %g t %g (as given)\n", double(cam.plane->l), double(cam.plane->r),
+                         double(cam.plane->b), double(cam.plane->t));
+    else if (cam.fov_degrees)
+        out += formatted("  fov      %g degrees (vertical)\n", double(*cam.fov_degrees));
+    out += formatted("  focal    %g\n", double(cam.focal_distance));
+    std::size_t spheres = 0, triangles = 0, meshes = 0, mesh_triangles = 0;
+    for (const rt::shape& item : s.shapes) {
+        if (std::holds_alternative<rt::sphere>(item))
+            ++spheres;
+        else if (std::holds_alternative<rt::triangle>(item))
+            ++triangles;
+        else {
+            ++meshes;
+            mesh_triangles += std::get<rt::mesh>(item).triangles.size();
+        }
+    }
+    out += formatted("shapes %zu: %zu sphere(s), %zu triangle(s), %zu mesh(es) with %zu triangle(s)\n",
+                     s.shapes.size(), spheres, triangles, meshes, mesh_triangles);
+    out += formatted("materials %zu, lights %zu\n", s.materials.size(), s.lights.size());
+    const rt::aabb box = rt::scene_bounds(s);
+    out += vector_line("min", box.lo) + vector_line("max", box.hi);
+    out.pop_back(); // a block's last line has no newline
+    return out;
+}
+
+/// The one-line message the loader gives for a bad scene `text` read as "bad.scene".
+std::string load_message(const std::string& text)
+{
+    try {
+        rt::load_scene_from_string(text, "bad.scene");
+    } catch (const rt::exercise_not_done&) {
+        throw;
+    } catch (const rt::error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+/// The colour the --pixel story of stages 05 to 08 prints for the showcase
+/// scene: the ray through the centre of the pixel in column `column` from the
+/// left and row `row` from the top (j = ny - 1 - row from the bottom), through
+/// the library's accelerator, with `colour(scene, accelerator, ray)`.
+template <class Colour>
+rt::color showcase_pixel(const fs::path& root, int column, int row, Colour colour, int max_depth = -1)
+{
+    rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
+    if (max_depth >= 0) // --max-depth N
+        s.max_depth = max_depth;
+    const rt::accelerator accel(s);
+    const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+    return colour(s, accel, rt::pixel_ray(gen, column, s.height - 1 - row));
+}
+
+rt::color stage05_colour(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
+{
+    rt::hit_record hit;
+    if (!accel.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))
+        return s.background;
+    return rt::direct_lighting(s, hit, r.direction, [](const rt::light_sample&) { return true; });
+}
+
+rt::color stage07_colour(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
+{
+    return rt::ray_color(s, accel, r);
+}
+
+/// "colour (linear) (r, g, b)" as the story prints it (%.9g).
+std::string story_colour(const rt::color& c)
+{
+    return formatted("(%.9g, %.9g, %.9g)", double(c.r), double(c.g), double(c.b));
+}
+
+/// "stored bytes (clamped, gamma 2.2): r g b" of the stage 05-07 stories.
+std::string story_bytes_gamma(const rt::color& c)
+{
+    return std::to_string(rt::to_byte(c.r, 2.2f)) + " " + std::to_string(rt::to_byte(c.g, 2.2f)) + " " +
+           std::to_string(rt::to_byte(c.b, 2.2f));
+}
+
+/// The stage-08 story's lines after the colour: exposed, tone mapped, stored bytes.
+std::string stage08_story(const rt::color& linear, const rt::encoding& enc)
+{
+    auto text = [](const rt::color& c) {
+        std::ostringstream out;
+        out << double(c.r) << " " << double(c.g) << " " << double(c.b);
+        return out.str();
+    };
+    std::ostringstream stops;
+    stops << double(enc.exposure);
+    const rt::color exposed = rt::apply_exposure(linear, enc.exposure);
+    const rt::color mapped = rt::apply_tonemap(exposed, enc.tonemap);
+    const std::array<std::uint8_t, 3> bytes = rt::encode_color(linear, enc);
+    return "exposed (2^" + stops.str() + "): " + text(exposed) + "\ntone mapped (" + rt::name_of(enc.tonemap) +
+           "): " + text(mapped) + "\nstored bytes (sRGB): " + std::to_string(bytes[0]) + " " +
+           std::to_string(bytes[1]) + " " + std::to_string(bytes[2]);
+}
+
 /// One linear value through the stage-08 pipeline to its stored byte.
 std::string pipeline_byte(float linear, rt::encoding enc)
 {
@@ -121,6 +251,56 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         all["stage03.far_spheres.textbook_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere_textbook); };
         all["stage03.far_spheres.stable_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere); };
     }
+    // stage 01: the program's output for the showcase scene, and one message per camera rule
+    all["stage01.showcase_output"] = [root] { return stage01_output(root, "scenes/showcase.scene"); };
+    all["stage01.message.unknown_keyword"] = [] { return load_message("sphere\nspere radius 1\n"); };
+    for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+             {"eye_is_look_at", "camera perspective eye 1 1 1 look_at 1 1 1\n"},
+             {"up_parallel", "camera perspective eye 0 0 5 look_at 0 0 0 up 0 0 2\n"},
+             {"up_zero", "camera perspective up 0 0 0\n"},
+             {"fov_zero", "camera perspective fov 0\n"},
+             {"fov_180", "camera perspective fov 180\n"},
+             {"fov_orthographic", "camera orthographic fov 60\n"},
+             {"window_empty", "camera orthographic window 1 1 -1 1\n"},
+             {"focal_zero", "camera perspective focal 0\n"},
+             {"fov_and_window", "camera perspective fov 60 window -1 1 -1 1\n"},
+             {"second_camera", "camera perspective\ncamera orthographic\n"},
+             {"camera_type", "camera perspektive\n"}}) {
+        const std::string scene_text = text;
+        all["stage01.message." + name] = [scene_text] { return load_message(scene_text); };
+    }
+    // stages 05, 07 and 08: the --pixel stories of the showcase scene (float build)
+    all["stage05.showcase_320_180.colour.float"] = [root] {
+        return story_colour(showcase_pixel(root, 320, 180, stage05_colour));
+    };
+    all["stage05.showcase_320_180.bytes.float"] = [root] {
+        return story_bytes_gamma(showcase_pixel(root, 320, 180, stage05_colour));
+    };
+    all["stage05.showcase_330_150.colour.float"] = [root] {
+        return story_colour(showcase_pixel(root, 330, 150, stage05_colour));
+    };
+    for (const auto& [column, row] : std::vector<std::pair<int, int>>{{330, 150}, {290, 150}, {320, 140}}) {
+        const int c = column, r = row;
+        const std::string at = std::to_string(c) + "_" + std::to_string(r);
+        all["stage07.showcase_" + at + ".colour.float"] = [root, c, r] {
+            return story_colour(showcase_pixel(root, c, r, stage07_colour));
+        };
+        all["stage07.showcase_" + at + ".bytes.float"] = [root, c, r] {
+            return story_bytes_gamma(showcase_pixel(root, c, r, stage07_colour));
+        };
+    }
+    all["stage07.showcase_330_150.colour_depth_0.float"] = [root] {
+        return story_colour(showcase_pixel(root, 330, 150, stage07_colour, 0));
+    };
+    all["stage08.showcase_290_150.story.float"] = [root] {
+        return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), rt::encoding{});
+    };
+    all["stage08.showcase_290_150.story_reinhard.float"] = [root] {
+        rt::encoding enc;
+        enc.exposure = 1.0f;
+        enc.tonemap = rt::tonemap_kind::reinhard;
+        return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), enc);
+    };
     all["stage08.worked_example_byte"] = [] {
         rt::encoding enc;
         enc.exposure = 1.0f;
@@ -187,34 +367,82 @@ int main(int argc, char** argv)
         if (e.is_regular_file() && e.path().extension() == ".md")
             pages.push_back(e.path());
     std::sort(pages.begin(), pages.end());
+    const std::regex block_marker(R"(^<!-- figure-block: ([A-Za-z0-9_.]+) -->\s*$)");
     int quoted = 0, checked = 0, failures = 0;
+    // One quoted figure: the page's text against the code's value.
+    // `block_page`/`block_line`: for a block, the page and the line number of its first line
+    auto compare = [&](const std::string& where, const std::string& name, const std::string& said,
+                       const std::string& block_page = "", std::size_t block_line = 0) {
+        ++quoted;
+        if (!known.count(name)) {
+            std::cout << where << ": figure " << name << ": expected a figure docs_figures computes, found "
+                      << "an unknown name; add it to tests/docs_figures.cpp\n";
+            ++failures;
+            return;
+        }
+        if (!holds_in_this_build(name))
+            return;
+        const std::string* code = value_of(name);
+        if (!code)
+            return;
+        ++checked;
+        if (said == *code)
+            return;
+        ++failures;
+        if (said.find('\n') == std::string::npos && code->find('\n') == std::string::npos) {
+            std::cout << where << ": figure " << name << ": the page says '" << said << "', the code gives '" << *code
+                      << "'\n";
+            return;
+        }
+        // a block: one line for its first line that differs
+        std::istringstream page_lines(said), code_lines(*code);
+        std::string page_line, code_line;
+        for (int k = 1;; ++k) {
+            const bool more_page = bool(std::getline(page_lines, page_line));
+            const bool more_code = bool(std::getline(code_lines, code_line));
+            if (!more_page && !more_code)
+                break;
+            if (more_page != more_code || page_line != code_line) {
+                std::cout << block_page << ":" << block_line + std::size_t(k) - 1 << ": figure " << name
+                          << ": line " << k << " of the block says '"
+                          << (more_page ? page_line : "(nothing)") << "', the code gives '"
+                          << (more_code ? code_line : "(nothing)") << "'\n";
+                break;
+            }
+        }
+    };
     for (const fs::path& page : pages) {
         std::ifstream in(page);
-        std::string line;
-        for (int number = 1; std::getline(in, line); ++number)
-            for (std::sregex_iterator m(line.begin(), line.end(), marker), end; m != end; ++m) {
-                ++quoted;
-                const std::string name = (*m)[1];
-                const std::string said = (*m)[2];
-                const std::string where = fs::relative(page, root).generic_string() + ":" + std::to_string(number);
-                if (!known.count(name)) {
-                    std::cout << where << ": figure " << name << ": expected a figure docs_figures computes, found "
-                              << "an unknown name; add it to tests/docs_figures.cpp\n";
+        std::vector<std::string> lines;
+        for (std::string line; std::getline(in, line);)
+            lines.push_back(line);
+        const std::string name_of_page = fs::relative(page, root).generic_string();
+        for (std::size_t k = 0; k < lines.size(); ++k) {
+            const std::string where = name_of_page + ":" + std::to_string(k + 1);
+            std::smatch block;
+            if (std::regex_match(lines[k], block, block_marker)) {
+                // the fenced block on the next line, up to its closing fence, is the figure
+                const std::string name = block[1];
+                if (k + 1 >= lines.size() || lines[k + 1].rfind("```", 0) != 0) {
+                    std::cout << where << ": figure " << name << ": expected a fenced block (```) on the next line, "
+                              << "found " << (k + 1 < lines.size() ? "'" + lines[k + 1] + "'" : "the end of the page")
+                              << "\n";
                     ++failures;
                     continue;
                 }
-                if (!holds_in_this_build(name))
-                    continue;
-                const std::string* code = value_of(name);
-                if (!code)
-                    continue;
-                ++checked;
-                if (said != *code) {
-                    std::cout << where << ": figure " << name << ": the page says '" << said << "', the code gives '"
-                              << *code << "'\n";
-                    ++failures;
-                }
+                std::size_t end = k + 2;
+                while (end < lines.size() && lines[end] != "```")
+                    ++end;
+                std::string said;
+                for (std::size_t b = k + 2; b < end; ++b)
+                    said += (b > k + 2 ? "\n" : "") + lines[b];
+                compare(where, name, said, name_of_page, k + 3);
+                k = end;
+                continue;
             }
+            for (std::sregex_iterator m(lines[k].begin(), lines[k].end(), marker), stop; m != stop; ++m)
+                compare(where, (*m)[1], (*m)[2]);
+        }
     }
     if (quoted == 0) {
         std::cout << "expected figures marked <!-- figure: NAME -->VALUE<!-- /figure --> under " << (root / "docs")

@@ -742,11 +742,14 @@ def plan_kit(root: Path, stages_to_strip: Set[int]) -> KitPlan:
     for rel, file_regions in by_file.items():
         text = (root / rel).read_text(encoding="utf-8")
         contents[rel] = strip_text(rel, text, file_regions, doc_of)
-    # The kit's README speaks to students: tools/kit/README.md (instructor-only)
-    # replaces the repository's, which describes the reference and the tools.
-    kit_readme = root / "tools" / "kit" / "README.md"
-    if kit_readme.is_file() and "README.md" in kept:
-        contents["README.md"] = kit_readme.read_text(encoding="utf-8")
+    # The kit's README and DEVELOPERS.md speak to students: tools/kit/README.md
+    # and tools/kit/DEVELOPERS.md (instructor-only) replace the repository's,
+    # which describe the reference, the instructor's tools and files a kit
+    # leaves out.
+    for student_page in ("README.md", "DEVELOPERS.md"):
+        replacement = root / "tools" / "kit" / student_page
+        if replacement.is_file() and student_page in kept:
+            contents[student_page] = replacement.read_text(encoding="utf-8")
     missing = sorted({r.stage for r in stripped if doc_of.get(r.stage) is None})
     return KitPlan(kept, left_out, stripped, solved, contents, missing)
 

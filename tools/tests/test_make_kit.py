@@ -497,8 +497,12 @@ class Kits(unittest.TestCase):
             "docs/stages/01-first.md": "# one\n",
             "tools/grade.py": "# grader\n",
             "tools/kit_manifest.json": '{"exercise_roots": ["include"], '
-                                       '"instructor_only": ["tests/hidden/", "tools/grade.py", "*.secret"]}',
+                                       '"instructor_only": ["tests/hidden/", "tools/grade.py", "*.secret", "tools/kit/"]}',
             "notes.secret": "answers\n",
+            "README.md": "the reference solution and its tools\n",
+            "DEVELOPERS.md": "the reference solution; tools/check_kit.py\n",
+            "tools/kit/README.md": "your kit\n",
+            "tools/kit/DEVELOPERS.md": "your code\n",
             "build/CMakeCache.txt": "junk\n",
         }
         for rel, text in files.items():
@@ -524,6 +528,13 @@ class Kits(unittest.TestCase):
                         "tools/kit_manifest.json"):
             self.assertTrue((kit / present).is_file(), present)
         self.assertEqual([p.name for p in self.tmp.iterdir() if ".tmp-" in p.name], [])
+
+    def test_the_kit_readme_and_developers_guide_are_the_students(self):
+        kit = self.tmp / "kit"
+        self.assertEqual(self.make("--from-stage", "1", str(kit)), 0)
+        self.assertEqual((kit / "README.md").read_text(), "your kit\n")
+        self.assertEqual((kit / "DEVELOPERS.md").read_text(), "your code\n")
+        self.assertFalse((kit / "tools/kit").exists())
 
     def test_only_stage_and_all(self):
         kit = self.tmp / "kit1"
