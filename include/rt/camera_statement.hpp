@@ -59,7 +59,7 @@ inline void parse_camera(statement& line, camera& cam)
         } else if (option == "fov") {
             const real fov = line.number("fov");
             if (!(fov > 0 && fov < 180))
-                throw parse_error(where, "a field of view between 0 and 180 degrees", std::to_string(fov));
+                throw parse_error(where, "a field of view between 0 and 180 degrees", detail::short_number(double(fov)));
             if (cam.kind == projection::orthographic)
                 throw parse_error(where, "a window for an orthographic camera", "fov",
                                   "fov applies to perspective cameras only; use window l r b t");
@@ -76,7 +76,7 @@ inline void parse_camera(statement& line, camera& cam)
         } else { // focal
             cam.focal_distance = line.number("focal distance");
             if (!(cam.focal_distance > 0))
-                throw parse_error(where, "a positive focal distance", std::to_string(cam.focal_distance));
+                throw parse_error(where, "a positive focal distance", detail::short_number(double(cam.focal_distance)));
         }
     });
     if (cam.fov_degrees && cam.plane)

@@ -187,7 +187,7 @@ private:
                 const source_location where = line.here();
                 m.p = line.number("Phong exponent p");
                 if (m.p < 0)
-                    throw parse_error(where, "a non-negative Phong exponent", std::to_string(m.p));
+                    throw parse_error(where, "a non-negative Phong exponent", detail::short_number(double(m.p)));
             }
         });
         if (!ambient_given)

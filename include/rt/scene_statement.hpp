@@ -192,7 +192,7 @@ public:
             const source_location where = here();
             const real value = number(what + " " + "rgb"[channel]);
             if (value < 0)
-                throw parse_error(where, "a non-negative " + what, std::to_string(value), "colours cannot be negative");
+                throw parse_error(where, "a non-negative " + what, detail::short_number(double(value)), "colours cannot be negative");
             c[channel] = float(value);
         }
         return c;
