@@ -13,11 +13,20 @@ cmake --install "$work/rt-build" > "$work/rt-install.log"
 test -f "$work/prefix/include/rt/rt.hpp"
 find "$work/prefix" -name rtConfig.cmake | grep -q .
 
+echo "== consumer: the README's code example, as written there"
+# the first ```cpp block after the readme-example marker
+awk '/<!-- readme-example/ {armed = 1; next} armed && /^```cpp/ {on = 1; next} on && /^```/ {exit} on {print}' \
+    "$root/README.md" > "$work/readme_example.cpp"
+test -s "$work/readme_example.cpp" || { echo "README.md: no readme-example code block found" >&2; exit 1; }
+
 echo "== consumer: find_package(rt CONFIG REQUIRED)"
-cmake -S "$root/tests/consumer" -B "$work/installed" -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/installed.log"
+cmake -S "$root/tests/consumer" -B "$work/installed" -DCMAKE_PREFIX_PATH="$work/prefix" \
+      -DRT_README_EXAMPLE="$work/readme_example.cpp" > "$work/installed.log"
 cmake --build "$work/installed" -j2
 "$work/installed/consumer" "$work/installed.png"
 test -s "$work/installed.png"
+(cd "$work/installed" && rm -f sphere.png && ./readme_example && test -s sphere.png)
+echo "== consumer: the README example wrote $work/installed/sphere.png"
 
 echo "== consumer: add_subdirectory(rt)"
 cmake -S "$root/tests/consumer" -B "$work/subdir" -DRT_SOURCE_DIR="$root" > "$work/subdir.log"
