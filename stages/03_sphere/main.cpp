@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <initializer_list>
 #include <iostream>
+#include <optional>
 #include <limits>
 #include <string>
 #include <variant>
@@ -113,34 +114,28 @@ int main(int argc, char** argv)
 {
     return stage::run("stage03_sphere", [&] {
         stage::arguments args(argc, argv);
-        std::string scene_path, prefix = "stage03", method = "textbook";
+        std::string prefix = "stage03", method = "textbook";
         stage::pixel_request pixel;
-        while (!args.done()) {
-            const std::string arg = args.take();
-            if (arg == "--help" || arg == "-h") {
-                std::cout << usage;
-                return 0;
-            } else if (arg == "-o") {
-                prefix = args.value_of("-o");
-                if (prefix.empty())
-                    throw rt::error("-o: expected a file name prefix, found an empty string; see --help");
-            } else if (arg == "--method") {
-                method = args.value_of("--method");
-                if (method != "textbook" && method != "stable")
-                    throw rt::error("--method: expected textbook or stable, found '" + method + "'");
-            } else if (arg == "--pixel" || arg == "--pixel-json") {
-                stage::read_pixel(args, arg, pixel);
-            } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --method, --pixel, --pixel-json, --help), found '" + arg +
-                                "'; see --help");
-            } else if (scene_path.empty()) {
-                scene_path = arg;
-            } else {
-                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
-            }
-        }
-        if (scene_path.empty())
-            throw rt::error("expected a scene file, found none; see --help");
+        const std::optional<std::string> scene_file =
+            stage::read_command_line(args, usage, "-o, --method, --pixel, --pixel-json", [&](const std::string& arg) {
+                if (arg == "-o") {
+                    prefix = args.value_of("-o");
+                    if (prefix.empty())
+                        throw rt::error("-o: expected a file name prefix, found an empty string; see --help");
+                } else if (arg == "--method") {
+                    method = args.value_of("--method");
+                    if (method != "textbook" && method != "stable")
+                        throw rt::error("--method: expected textbook or stable, found '" + method + "'");
+                } else if (arg == "--pixel" || arg == "--pixel-json") {
+                    stage::read_pixel(args, arg, pixel);
+                } else {
+                    return false;
+                }
+                return true;
+            });
+        if (!scene_file)
+            return 0; // --help
+        const std::string& scene_path = *scene_file;
         const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
                           normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",
                           depth_png = prefix + "-depth.png";

@@ -4,6 +4,7 @@
 //     stage05_shading scenes/shading.scene -o shading.png [--falloff]
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <rt/shading.hpp>
@@ -14,36 +15,29 @@ int main(int argc, char** argv)
 {
     return stage::run("stage05_shading", [&] {
         stage::arguments args(argc, argv);
-        std::string scene_path, output = "shading.png";
+        std::string output = "shading.png";
         stage::pixel_request pixel;
         rt::shading_options options;
-        while (!args.done()) {
-            const std::string arg = args.take();
-            if (arg == "--help" || arg == "-h") {
-                std::cout << "usage: stage05_shading SCENE [-o OUTPUT] [--falloff] [--pixel I J]\n"
-                             "Renders SCENE with Blinn-Phong shading and no shadows.\n"
-                             "  -o OUTPUT        .png, .ppm or .pfm (default shading.png)\n"
-                             "  --falloff        point lights fall off as 1/r^2 (default: off, as in the book)\n"
-                          << stage::pixel_help;
-                return 0;
-            } else if (arg == "-o") {
-                output = args.value_of("-o");
-            } else if (arg == "--falloff") {
-                options.light_falloff = true;
-            } else if (arg == "--pixel" || arg == "--pixel-json") {
-                stage::read_pixel(args, arg, pixel);
-            } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --falloff, --pixel, --pixel-json, --help), found '" + arg +
-                                "'; see --help");
-            } else if (scene_path.empty()) {
-                scene_path = arg;
-            } else {
-                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
-            }
-        }
-        if (scene_path.empty())
-            throw rt::error("expected a scene file, found none; see --help");
-        stage::render_shaded("stage05_shading", scene_path, output, pixel, {false, options.light_falloff},
+        const std::string usage = std::string("usage: stage05_shading SCENE [-o OUTPUT] [--falloff] [--pixel I J]\n"
+                                              "Renders SCENE with Blinn-Phong shading and no shadows.\n"
+                                              "  -o OUTPUT        .png, .ppm or .pfm (default shading.png)\n"
+                                              "  --falloff        point lights fall off as 1/r^2 (default: off, as in the book)\n") +
+                                  stage::pixel_help;
+        const std::optional<std::string> scene_path =
+            stage::read_command_line(args, usage, "-o, --falloff, --pixel, --pixel-json", [&](const std::string& arg) {
+                if (arg == "-o")
+                    output = args.value_of("-o");
+                else if (arg == "--falloff")
+                    options.light_falloff = true;
+                else if (arg == "--pixel" || arg == "--pixel-json")
+                    stage::read_pixel(args, arg, pixel);
+                else
+                    return false;
+                return true;
+            });
+        if (!scene_path)
+            return 0; // --help
+        stage::render_shaded("stage05_shading", *scene_path, output, pixel, {false, options.light_falloff},
                              [&](const rt::scene& s, const auto& world, const rt::ray& r) {
                                  rt::hit_record hit;
                                  if (!world.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))

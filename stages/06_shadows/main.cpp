@@ -5,6 +5,7 @@
 //     stage06_shadows scenes/shadows.scene -o shadows.png [--offset robust|fixed] [--epsilon E]
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <rt/shading.hpp>
@@ -16,52 +17,47 @@ int main(int argc, char** argv)
 {
     return stage::run("stage06_shadows", [&] {
         stage::arguments args(argc, argv);
-        std::string scene_path, output = "shadows.png", offset = "robust";
+        std::string output = "shadows.png", offset = "robust";
         rt::real epsilon = rt::real(1e-4);
         stage::pixel_request pixel;
-        while (!args.done()) {
-            const std::string arg = args.take();
-            if (arg == "--help" || arg == "-h") {
-                std::cout << "usage: stage06_shadows SCENE [-o OUTPUT] [--offset robust|fixed] [--epsilon E]\n"
-                             "Renders SCENE with Blinn-Phong shading and shadow rays.\n"
-                             "  -o OUTPUT        .png, .ppm or .pfm (default shadows.png)\n"
-                             "  --offset robust  start shadow rays with the offset of Ray Tracing Gems ch. 6 (default)\n"
-                             "  --offset fixed   start them at the hit point and skip hits closer than E\n"
-                             "  --epsilon E      the fixed epsilon (default 1e-4)\n"
-                          << stage::pixel_help;
-                return 0;
-            } else if (arg == "-o") {
-                output = args.value_of("-o");
-            } else if (arg == "--offset") {
-                offset = args.value_of("--offset");
-                if (offset != "robust" && offset != "fixed")
-                    throw rt::error("--offset: expected robust or fixed, found '" + offset + "'");
-            } else if (arg == "--epsilon") {
-                const std::string text = args.value_of("--epsilon");
-                try {
-                    std::size_t used = 0;
-                    epsilon = rt::real(std::stod(text, &used));
-                    if (used != text.size() || !(epsilon >= 0))
-                        throw std::invalid_argument(text);
-                } catch (const std::exception&) {
-                    throw rt::error("--epsilon: expected a non-negative number, found '" + text + "'");
+        const std::string usage =
+            std::string("usage: stage06_shadows SCENE [-o OUTPUT] [--offset robust|fixed] [--epsilon E]\n"
+                        "Renders SCENE with Blinn-Phong shading and shadow rays.\n"
+                        "  -o OUTPUT        .png, .ppm or .pfm (default shadows.png)\n"
+                        "  --offset robust  start shadow rays with the offset of Ray Tracing Gems ch. 6 (default)\n"
+                        "  --offset fixed   start them at the hit point and skip hits closer than E\n"
+                        "  --epsilon E      the fixed epsilon (default 1e-4)\n") +
+            stage::pixel_help;
+        const std::optional<std::string> scene_path = stage::read_command_line(
+            args, usage, "-o, --offset, --epsilon, --pixel, --pixel-json", [&](const std::string& arg) {
+                if (arg == "-o") {
+                    output = args.value_of("-o");
+                } else if (arg == "--offset") {
+                    offset = args.value_of("--offset");
+                    if (offset != "robust" && offset != "fixed")
+                        throw rt::error("--offset: expected robust or fixed, found '" + offset + "'");
+                } else if (arg == "--epsilon") {
+                    const std::string text = args.value_of("--epsilon");
+                    try {
+                        std::size_t used = 0;
+                        epsilon = rt::real(std::stod(text, &used));
+                        if (used != text.size() || !(epsilon >= 0))
+                            throw std::invalid_argument(text);
+                    } catch (const std::exception&) {
+                        throw rt::error("--epsilon: expected a non-negative number, found '" + text + "'");
+                    }
+                } else if (arg == "--pixel" || arg == "--pixel-json") {
+                    stage::read_pixel(args, arg, pixel);
+                } else {
+                    return false;
                 }
-            } else if (arg == "--pixel" || arg == "--pixel-json") {
-                stage::read_pixel(args, arg, pixel);
-            } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --offset, --epsilon, --pixel, --pixel-json, --help), found '" +
-                                arg + "'; see --help");
-            } else if (scene_path.empty()) {
-                scene_path = arg;
-            } else {
-                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
-            }
-        }
-        if (scene_path.empty())
-            throw rt::error("expected a scene file, found none; see --help");
+                return true;
+            });
+        if (!scene_path)
+            return 0; // --help
         const bool robust = offset == "robust";
         stage::render_shaded(
-            "stage06_shadows", scene_path, output, pixel, {true, false},
+            "stage06_shadows", *scene_path, output, pixel, {true, false},
             [&](const rt::scene& s, const auto& world, const rt::ray& r) {
                 rt::hit_record hit;
                 if (!world.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,36 @@ private:
     std::vector<std::string> list_;
     std::size_t next_ = 0;
 };
+
+/// The command line every stage program reads: one scene file and options.
+/// `option(arg)` consumes an option the program knows (reading its values
+/// from `args`) and returns true, false for one it does not know. --help and
+/// -h print `usage` and give nullopt (the program exits 0); an unknown option,
+/// a second file or no file at all is an rt::error naming what was expected,
+/// with `known` listing the options. Returns the scene file's path.
+template <class Option>
+std::optional<std::string> read_command_line(arguments& args, const std::string& usage, const std::string& known,
+                                             Option&& option)
+{
+    std::string scene_path;
+    while (!args.done()) {
+        const std::string arg = args.take();
+        if (arg == "--help" || arg == "-h") {
+            std::cout << usage;
+            return std::nullopt;
+        }
+        if (option(arg))
+            continue;
+        if (!arg.empty() && arg[0] == '-')
+            throw rt::error("expected an option (" + known + ", --help), found '" + arg + "'; see --help");
+        if (!scene_path.empty())
+            throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
+        scene_path = arg;
+    }
+    if (scene_path.empty())
+        throw rt::error("expected a scene file, found none; see --help");
+    return scene_path;
+}
 
 /// --pixel I J or --pixel-json I J: the pixel whose story a program tells
 /// (pixel_story.hpp) instead of writing its image.
