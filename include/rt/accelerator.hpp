@@ -28,11 +28,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "bvh.hpp"
+#include "enum_names.hpp"
 #include "error.hpp"
 #include "hit_record.hpp"
 #include "mesh.hpp"
@@ -63,24 +65,17 @@ enum class accelerator_kind {
 /// on scenes of a handful of shapes.
 constexpr std::size_t flat_list_crossover = 4;
 
-inline const char* to_string(accelerator_kind kind)
-{
-    switch (kind) {
-    case accelerator_kind::flat: return "flat";
-    case accelerator_kind::bvh: return "bvh";
-    default: return "auto";
-    }
-}
+/// The names of the accelerator kinds; the first is the default.
+inline constexpr enum_name<accelerator_kind> accelerator_names[] = {
+    {accelerator_kind::automatic, "auto"}, {accelerator_kind::flat, "flat"}, {accelerator_kind::bvh, "bvh"}};
+
+inline const char* name_of(accelerator_kind kind) { return name_in(accelerator_names, kind); }
 
 /// "flat", "bvh" or "auto"; anything else is an rt::error.
 inline accelerator_kind parse_accelerator_kind(const std::string& word)
 {
-    if (word == "flat")
-        return accelerator_kind::flat;
-    if (word == "bvh")
-        return accelerator_kind::bvh;
-    if (word == "auto")
-        return accelerator_kind::automatic;
+    if (const std::optional<accelerator_kind> kind = value_named(accelerator_names, word))
+        return *kind;
     throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
 }
 

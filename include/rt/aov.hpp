@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "enum_names.hpp"
 
 namespace rt {
 
@@ -17,30 +18,21 @@ namespace rt {
 /// or the camera ray's direction.
 enum class aov_kind { none, depth, normal, position, rays };
 
+/// The names of the debug images; "shaded" (aov_kind::none) is not a debug image.
+inline constexpr enum_name<aov_kind> aov_names[] = {{aov_kind::none, "shaded"},
+                                                    {aov_kind::depth, "depth"},
+                                                    {aov_kind::normal, "normal"},
+                                                    {aov_kind::position, "position"},
+                                                    {aov_kind::rays, "rays"}};
+
+/// The debug image a name means ("depth", "normal", "position", "rays"), or nothing.
 inline std::optional<aov_kind> aov_from_name(const std::string& name)
 {
-    if (name == "depth")
-        return aov_kind::depth;
-    if (name == "normal")
-        return aov_kind::normal;
-    if (name == "position")
-        return aov_kind::position;
-    if (name == "rays")
-        return aov_kind::rays;
-    return std::nullopt;
+    const std::optional<aov_kind> kind = value_named(aov_names, name);
+    return kind == aov_kind::none ? std::nullopt : kind;
 }
 
 /// "shaded" for aov_kind::none, otherwise the name aov_from_name reads.
-inline const char* name_of(aov_kind kind)
-{
-    switch (kind) {
-    case aov_kind::depth: return "depth";
-    case aov_kind::normal: return "normal";
-    case aov_kind::position: return "position";
-    case aov_kind::rays: return "rays";
-    case aov_kind::none: break;
-    }
-    return "shaded";
-}
+inline const char* name_of(aov_kind kind) { return name_in(aov_names, kind); }
 
 } // namespace rt

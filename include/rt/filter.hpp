@@ -31,6 +31,7 @@
 #include <optional>
 #include <string>
 
+#include "enum_names.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -120,29 +121,14 @@ inline int filter_reach(const filter& f)
     return reach > 0 ? int(reach) : 0;
 }
 
-/// The filter a name means ("box", "tent", "gaussian", "mitchell"), or nothing.
-inline std::optional<filter_kind> filter_from_name(const std::string& name)
-{
-    if (name == "box")
-        return filter_kind::box;
-    if (name == "tent")
-        return filter_kind::tent;
-    if (name == "gaussian")
-        return filter_kind::gaussian;
-    if (name == "mitchell")
-        return filter_kind::mitchell;
-    return std::nullopt;
-}
+/// The names of the filters; the first is the default.
+inline constexpr enum_name<filter_kind> filter_names[] = {
+    {filter_kind::box, "box"}, {filter_kind::tent, "tent"}, {filter_kind::gaussian, "gaussian"},
+    {filter_kind::mitchell, "mitchell"}};
 
-inline const char* name_of(filter_kind kind)
-{
-    switch (kind) {
-    case filter_kind::tent: return "tent";
-    case filter_kind::gaussian: return "gaussian";
-    case filter_kind::mitchell: return "mitchell";
-    case filter_kind::box: break;
-    }
-    return "box";
-}
+/// The filter a name means ("box", "tent", "gaussian", "mitchell"), or nothing.
+inline std::optional<filter_kind> filter_from_name(const std::string& name) { return value_named(filter_names, name); }
+
+inline const char* name_of(filter_kind kind) { return name_in(filter_names, kind); }
 
 } // namespace rt

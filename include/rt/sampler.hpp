@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.hpp"
 #include "random.hpp"
 #include "vec.hpp"
 
@@ -177,33 +178,18 @@ inline void pixel_samples(sampler_kind kind, int spp, std::uint64_t seed, std::u
     }
 }
 
+/// The names of the samplers; the first is the default.
+inline constexpr enum_name<sampler_kind> sampler_names[] = {
+    {sampler_kind::center, "center"}, {sampler_kind::grid, "grid"},     {sampler_kind::random, "random"},
+    {sampler_kind::jittered, "jittered"}, {sampler_kind::halton, "halton"}};
+
 /// The sampler a name means ("center", "grid", "random", "jittered", "halton"), or nothing.
 inline std::optional<sampler_kind> sampler_from_name(const std::string& name)
 {
-    if (name == "center")
-        return sampler_kind::center;
-    if (name == "grid")
-        return sampler_kind::grid;
-    if (name == "random")
-        return sampler_kind::random;
-    if (name == "jittered")
-        return sampler_kind::jittered;
-    if (name == "halton")
-        return sampler_kind::halton;
-    return std::nullopt;
+    return value_named(sampler_names, name);
 }
 
-inline const char* name_of(sampler_kind kind)
-{
-    switch (kind) {
-    case sampler_kind::grid: return "grid";
-    case sampler_kind::random: return "random";
-    case sampler_kind::jittered: return "jittered";
-    case sampler_kind::halton: return "halton";
-    case sampler_kind::center: break;
-    }
-    return "center";
-}
+inline const char* name_of(sampler_kind kind) { return name_in(sampler_names, kind); }
 
 /// The sampler used when none is named: one ray through each pixel centre for
 /// 1 sample per pixel (the image of stages 02-07), jittered otherwise.

@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 
+#include "enum_names.hpp"
 #include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
 #include "vec.hpp"
 
@@ -93,26 +94,16 @@ inline color apply_tonemap(const color& c, tonemap_kind kind)
     return color(apply_tonemap(c.r, kind), apply_tonemap(c.g, kind), apply_tonemap(c.b, kind));
 }
 
+/// The names of the tone maps; the first is the default.
+inline constexpr enum_name<tonemap_kind> tonemap_names[] = {
+    {tonemap_kind::clamp, "clamp"}, {tonemap_kind::reinhard, "reinhard"}, {tonemap_kind::aces, "aces"}};
+
 /// The tone map a name means ("clamp", "reinhard", "aces"), or nothing.
 inline std::optional<tonemap_kind> tonemap_from_name(const std::string& name)
 {
-    if (name == "clamp")
-        return tonemap_kind::clamp;
-    if (name == "reinhard")
-        return tonemap_kind::reinhard;
-    if (name == "aces")
-        return tonemap_kind::aces;
-    return std::nullopt;
+    return value_named(tonemap_names, name);
 }
 
-inline const char* name_of(tonemap_kind kind)
-{
-    switch (kind) {
-    case tonemap_kind::reinhard: return "reinhard";
-    case tonemap_kind::aces: return "aces";
-    case tonemap_kind::clamp: break;
-    }
-    return "clamp";
-}
+inline const char* name_of(tonemap_kind kind) { return name_in(tonemap_names, kind); }
 
 } // namespace rt

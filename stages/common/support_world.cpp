@@ -19,7 +19,7 @@ bool world::closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_
 
 bool world::any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const { return impl_->any_hit(r, tmin, tmax); }
 
-std::string world::kind() const { return rt::to_string(impl_->kind()); }
+std::string world::kind() const { return rt::name_of(impl_->kind()); }
 
 std::size_t world::primitives() const { return impl_->primitive_count(); }
 
