@@ -27,6 +27,7 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/bvh.hpp>
+#include <rt/mesh_hit.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/offset.hpp>
 #include <rt/spawn.hpp>

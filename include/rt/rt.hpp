@@ -25,6 +25,7 @@
 #include "light.hpp"
 #include "material.hpp"
 #include "mesh.hpp"
+#include "mesh_hit.hpp"
 #include "obj_loader.hpp"
 #include "offset.hpp"
 #include "progress.hpp"

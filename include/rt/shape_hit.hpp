@@ -16,6 +16,7 @@
 
 #include "hit_record.hpp"
 #include "mesh.hpp"
+#include "mesh_hit.hpp"
 #include "ray.hpp"
 #include "rounding.hpp"
 #include "scene.hpp"

@@ -1,0 +1,63 @@
+// mesh_hit.hpp - a ray against every triangle of one mesh, by the library's
+// watertight test (watertight.hpp): the flat search inside a mesh that the
+// scene's flat list (shape_hit.hpp) uses; the BVH (bvh.hpp) does the same
+// work faster and returns the same hits.
+//
+//     rt::hit_record rec;
+//     if (rt::hit_mesh(m, r, 0, rt::infinity, rec)) ... // rec.primitive: which triangle
+#pragma once
+
+#include <cstddef>
+
+#include "hit_record.hpp"
+#include "mesh.hpp"
+#include "ray.hpp"
+#include "vec.hpp"
+#include "watertight.hpp"
+
+namespace rt {
+
+/// The nine corner coordinates of triangle i (a.x a.y a.z b.x ... c.z), as
+/// intersect_watertight takes them.
+inline void triangle_corners(const mesh& m, std::size_t i, real v[9])
+{
+    const index3& face = m.triangles[i];
+    for (int k = 0; k < 3; ++k) {
+        const vec3& p = m.positions[face[std::size_t(k)]];
+        v[3 * k] = p.x;
+        v[3 * k + 1] = p.y;
+        v[3 * k + 2] = p.z;
+    }
+}
+
+/// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in
+/// turn (the BVH of intersect.hpp does the same work faster). When two
+/// triangles give the same t, the later one is kept, as the scene's flat list
+/// does.
+inline bool hit_mesh(const mesh& m, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    const watertight_ray w = make_watertight_ray(r);
+    bool found = false;
+    std::size_t best = 0;
+    triangle_hit best_hit;
+    real closest = tmax;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+        real v[9];
+        triangle_corners(m, i, v);
+        triangle_hit h;
+        if (intersect_watertight(w, v, tmin, closest, h)) {
+            found = true;
+            best = i;
+            best_hit = h;
+            closest = h.t;
+        }
+    }
+    if (!found)
+        return false;
+    const index3& face = m.triangles[best];
+    fill_triangle_record(m.positions[face[0]], m.positions[face[1]], m.positions[face[2]], r, best_hit, rec);
+    complete_mesh_hit(m, best, rec);
+    return true;
+}
+
+} // namespace rt
