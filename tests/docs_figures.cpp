@@ -40,6 +40,8 @@
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
 
+#include "slab_cases.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -120,6 +122,22 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         all["stage03.far_spheres.textbook_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere_textbook); };
         all["stage03.far_spheres.stable_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere); };
     }
+    // the slab test's failures (library_slab.cpp): the textbook form is the copy in slab_cases.hpp
+    all["stage04.slab.face_plane_rays"] = [] { return std::to_string(rt_test::face_plane_rays().size()); };
+    all["stage04.slab.face_plane_rays.textbook_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::face_plane_rays(), rt_test::textbook_hits));
+    };
+    all["stage04.slab.face_plane_rays.robust_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::face_plane_rays(), rt_test::robust_hits));
+    };
+    all["stage04.slab.edge_rays"] = [] { return std::to_string(rt_test::edge_rays().size()); };
+    for (const char* precision : {"float", "double"})
+        all["stage04.slab.edge_rays.textbook_misses." + std::string(precision)] = [] {
+            return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::textbook_hits));
+        };
+    all["stage04.slab.edge_rays.robust_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::robust_hits));
+    };
     all["stage08.worked_example_byte"] = [] {
         rt::encoding enc;
         enc.exposure = 1.0f;
