@@ -31,6 +31,7 @@
 
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
+#include <rt/groups.hpp>
 #include <rt/error.hpp>
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
@@ -122,6 +123,14 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         all["stage03.far_spheres.textbook_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere_textbook); };
         all["stage03.far_spheres.stable_hits." + p] = [far] { return sphere_hits(far, rt::hit_sphere); };
     }
+    // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)
+    all["stage04.showcase.group_items"] = [root] {
+        return std::to_string(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene")).size());
+    };
+    all["stage04.showcase.group_nodes"] = [root] {
+        return std::to_string(
+            rt::build_groups(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene"))).nodes.size());
+    };
     // the slab test's failures (library_slab.cpp): the textbook form is the copy in slab_cases.hpp
     all["stage04.slab.face_plane_rays"] = [] { return std::to_string(rt_test::face_plane_rays().size()); };
     all["stage04.slab.face_plane_rays.textbook_misses"] = [] {
