@@ -16,7 +16,7 @@
 //  - closest_hit_groups (exercise): a ray tests a node's box (hit_box_robust,
 //    slab.hpp) and only then its children; the nearer child first, and a
 //    child whose box starts beyond the closest hit so far is skipped
-//    (PBR 3rd ed., sec. 4.3.4, front-to-back traversal).
+//    (PBR 3rd ed., sec. 4.3.5, front-to-back traversal).
 // The result is the list's (closest_hit_list), hit for hit, ties included: at
 // an equal t the item later in scene order wins.
 //
