@@ -38,6 +38,7 @@
 #include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
 #include <rt/encoding.hpp>
+#include <rt/groups.hpp>
 #include <rt/error.hpp>
 #include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
@@ -49,6 +50,8 @@
 #include <rt/sphere.hpp>
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
+
+#include "slab_cases.hpp"
 
 namespace {
 
@@ -300,6 +303,30 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         enc.exposure = 1.0f;
         enc.tonemap = rt::tonemap_kind::reinhard;
         return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), enc);
+    };
+    // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)
+    all["stage04.showcase.group_items"] = [root] {
+        return std::to_string(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene")).size());
+    };
+    all["stage04.showcase.group_nodes"] = [root] {
+        return std::to_string(
+            rt::build_groups(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene"))).nodes.size());
+    };
+    // the slab test's failures (library_slab.cpp): the textbook form is the copy in slab_cases.hpp
+    all["stage04.slab.face_plane_rays"] = [] { return std::to_string(rt_test::face_plane_rays().size()); };
+    all["stage04.slab.face_plane_rays.textbook_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::face_plane_rays(), rt_test::textbook_hits));
+    };
+    all["stage04.slab.face_plane_rays.robust_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::face_plane_rays(), rt_test::robust_hits));
+    };
+    all["stage04.slab.edge_rays"] = [] { return std::to_string(rt_test::edge_rays().size()); };
+    for (const char* precision : {"float", "double"})
+        all["stage04.slab.edge_rays.textbook_misses." + std::string(precision)] = [] {
+            return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::textbook_hits));
+        };
+    all["stage04.slab.edge_rays.robust_misses"] = [] {
+        return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::robust_hits));
     };
     all["stage08.worked_example_byte"] = [] {
         rt::encoding enc;

@@ -30,6 +30,21 @@ inline void triangle_corners(const mesh& m, std::size_t i, real v[9])
     }
 }
 
+/// The watertight hit of triangle i of `m` in [tmin, tmax], the record
+/// complete (the student's groups test one triangle at a time: groups.hpp).
+inline bool hit_mesh_triangle(const mesh& m, std::size_t i, const ray& r, real tmin, real tmax, hit_record& rec)
+{
+    real v[9];
+    triangle_corners(m, i, v);
+    triangle_hit h;
+    if (!intersect_watertight(make_watertight_ray(r), v, tmin, tmax, h))
+        return false;
+    const index3& face = m.triangles[i];
+    fill_triangle_record(m.positions[face[0]], m.positions[face[1]], m.positions[face[2]], r, h, rec);
+    complete_mesh_hit(m, i, rec);
+    return true;
+}
+
 /// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in
 /// turn (the BVH of intersect.hpp does the same work faster). When two
 /// triangles give the same t, the later one is kept, as the scene's flat list

@@ -1,7 +1,9 @@
-// Stage 04 - triangles, meshes and the list: render a scene or an OBJ model
-// as normals or depth with the student's own code (Moller-Trumbore for
-// triangles, the textbook quadratic for spheres, the list of
-// rt::closest_hit_list), and compare it with the library's watertight BVH.
+// Stage 04 - triangles, meshes, the list and the groups: render a scene or an
+// OBJ model as normals or depth with the student's own code (Moller-Trumbore
+// for triangles, the textbook quadratic for spheres, the groups of
+// rt::build_groups and rt::closest_hit_groups, or the list of
+// rt::closest_hit_list), time the groups against the list, and compare the
+// image with the library's watertight BVH.
 //
 //     stage04_triangle scenes/showcase.scene -o showcase.png
 //     stage04_triangle ../shared/meshes/stanford-bunny.obj --size 160x120 -o bunny.png
@@ -32,23 +34,28 @@
 #include "pixel_story.hpp"
 #include "stage_main.hpp"
 #include "support.hpp"
+#include "textbook_groups.hpp"
 #include "textbook_list.hpp"
 
 namespace {
 
 const char* usage =
     "usage: stage04_triangle INPUT [-o OUTPUT] [--mode normals|geometric|depth] [--size WxH]\n"
-    "                        [--accel list|flat|bvh|auto] [--compare] [--pixel I J]\n"
+    "                        [--accel groups|list|flat|bvh|auto] [--compare] [--pixel I J]\n"
     "Renders INPUT, a .scene file (its camera and shapes) or a bare OBJ model (framed\n"
     "by its bounds), one ray per pixel, and prints how long it took.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default triangle.png); a .pfm of depth holds t |d|\n"
     "  --mode M        normals: (n + 1)/2 of the shading normal (default); geometric: of the\n"
     "                  geometric normal; depth: distance, near white, far grey\n"
     "  --size WxH      image size (default: the scene's own; 640x480 for an OBJ)\n"
-    "  --accel A       list: your closest_hit_list with your hit_triangle_moller_trumbore and\n"
-    "                  hit_sphere_textbook (the default); flat, bvh, auto: the library's\n"
-    "                  watertight test and BVH\n"
-    "  --compare       render with both and write where they differ: red where only the\n"
+    "  --accel A       groups: your build_groups and closest_hit_groups with your\n"
+    "                  hit_triangle_moller_trumbore and hit_sphere_textbook (the default; it\n"
+    "                  also times your list on a sample of the rows and prints the speed-up,\n"
+    "                  and counts the pixels that differ from the library's BVH);\n"
+    "                  list: your closest_hit_list with the same methods;\n"
+    "                  flat, bvh, auto: the library's watertight test and BVH\n"
+    "  --compare       render with yours (your groups; your list with --accel list) and the\n"
+    "                  library's, and write where they differ: red where only the\n"
     "                  library hits (a ray that leaked through your triangles), blue where\n"
     "                  only yours hits, yellow where both hit different shapes or depths\n"
     "  --strict        warnings of the OBJ files (missing materials) are errors\n"
@@ -106,9 +113,12 @@ pixel_hit trace_one(const Accelerator& world, const rt::ray& r, bool geometric)
 }
 
 /// Every pixel's hit, the top row first, traced on every core: each thread
-/// takes every n-th row, so no two threads write the same slot.
+/// takes every n-th row, so no two threads write the same slot. With
+/// row_step > 1 only the rows j = 0, row_step, 2 row_step, ... are traced (a
+/// sample, for timing); the other pixels stay misses.
 template <class Accelerator>
-std::vector<pixel_hit> trace_image(const Accelerator& world, const rt::ray_generator& gen, bool geometric)
+std::vector<pixel_hit> trace_image(const Accelerator& world, const rt::ray_generator& gen, bool geometric,
+                                   int row_step = 1)
 {
     std::vector<pixel_hit> hits(std::size_t(gen.nx) * std::size_t(gen.ny));
     const int threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -117,7 +127,7 @@ std::vector<pixel_hit> trace_image(const Accelerator& world, const rt::ray_gener
     std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
     auto rows = [&](int first) {
         try {
-            for (int j = first; j < gen.ny; j += threads)
+            for (int j = first * row_step; j < gen.ny; j += threads * row_step)
                 for (int i = 0; i < gen.nx; ++i)
                     hits[std::size_t(gen.ny - 1 - j) * std::size_t(gen.nx) + std::size_t(i)] =
                         trace_one(world, rt::pixel_ray(gen, i, j), geometric);
@@ -166,7 +176,7 @@ int main(int argc, char** argv)
 {
     return stage::run("stage04_triangle", [&] {
         stage::arguments args(argc, argv);
-        std::string input, output = "triangle.png", mode = "normals", accel = "list";
+        std::string input, output = "triangle.png", mode = "normals", accel = "groups";
         int width = 0, height = 0;
         bool compare = false, strict = false;
         stage::pixel_request pixel;
@@ -190,7 +200,7 @@ int main(int argc, char** argv)
                 height = parse_int(size.substr(x + 1), "--size height", 1, 16384);
             } else if (arg == "--accel") {
                 accel = args.value_of("--accel");
-                if (accel != "list")
+                if (accel != "list" && accel != "groups")
                     rt::parse_accelerator_kind(accel); // an rt::error naming the choices
             } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
                 strict = true;
@@ -260,44 +270,71 @@ int main(int argc, char** argv)
         const bool raw = ends_with(output, ".pfm");
         const std::size_t primitives = n.spheres + n.triangles + n.mesh_triangles;
         const double tests = double(primitives) * double(width) * double(height);
-        const bool use_list = accel == "list" || compare;
+        // your code: the groups (the default) or the list; the library: its BVH or flat list
+        const bool use_list = accel == "list";
+        const bool use_groups = accel == "groups" || (compare && !use_list);
+        const bool mine_shown = use_list || accel == "groups";
+        const std::string yours = use_list ? "your list" : "your groups";
         // the list tests every shape for every ray: about 10 ns a test here, so
         // beyond a few billion tests it would take minutes (the bunny at 640x480: 21 billion)
         if (use_list && tests > 3e9)
             throw rt::error("expected a scene the list can trace in a minute, found " + std::to_string(primitives) +
                             " shapes for each of " + std::to_string(width * height) + " rays (" +
                             std::to_string(tests / 1e9).substr(0, 5) +
-                            " billion tests); try --size 160x120, or --accel bvh for the library's BVH");
+                            " billion tests); try --size 160x120, --accel groups for your groups, or --accel bvh "
+                            "for the library's BVH");
 
-        // every pixel traced with `world`, timed, and one line: how many hit, how fast
-        auto trace_timed = [&](const auto& world, const std::string& name) {
+        // the pixels traced with `world` (every row_step-th row), timed, and one line:
+        // how many hit, how fast; the rate in rays per second goes to `rate`
+        auto trace_timed = [&](const auto& world, const std::string& name, int row_step, double& rate) {
             const auto start = clock_type::now();
-            std::vector<pixel_hit> hits = trace_image(world, gen, geometric);
+            std::vector<pixel_hit> hits = trace_image(world, gen, geometric, row_step);
             const double seconds = seconds_since(start);
+            const std::size_t rays = std::size_t((gen.ny + row_step - 1) / row_step) * std::size_t(gen.nx);
             std::size_t count = 0;
             for (const pixel_hit& h : hits)
                 count += h.hit ? 1 : 0;
-            std::cout << name << ": " << count << " of " << hits.size() << " rays hit, " << std::setprecision(3)
-                      << seconds << " s (" << double(hits.size()) / seconds / 1e6 << " Mrays/s)\n";
+            rate = double(rays) / std::max(seconds, 1e-9);
+            std::cout << name << ": " << count << " of " << rays << " rays hit, " << std::setprecision(3) << seconds
+                      << " s (" << rate / 1e6 << " Mrays/s)\n";
             return hits;
         };
         std::vector<pixel_hit> mine, library;
+        double mine_rate = 0, list_rate = 0, library_rate = 0;
         if (use_list)
-            mine = trace_timed(list, "your list");
-        if (accel != "list" || compare) {
+            mine = trace_timed(list, "your list", 1, mine_rate);
+        if (use_groups) {
             const auto build_start = clock_type::now();
-            const stage::world world(s, accel == "list" ? "auto" : accel);
+            const stage::textbook_groups groups(s);
+            std::ostringstream name;
+            name << "your groups (" << groups.g.items.size() << " items, " << groups.g.nodes.size()
+                 << " nodes, built in " << std::setprecision(3) << seconds_since(build_start) << " s)";
+            mine = trace_timed(groups, name.str(), 1, mine_rate);
+            // the speed-up over your list, timed on one row in `step` when the whole
+            // image would take the list more than 1e8 tests (a few seconds)
+            const int step = int(std::min(double(height), std::max(1.0, std::ceil(tests / 1e8))));
+            const std::string list_name =
+                step == 1 ? std::string("your list") : "your list (one row in " + std::to_string(step) + ")";
+            trace_timed(list, list_name, step, list_rate);
+            std::ostringstream speed_up;
+            speed_up << std::fixed << std::setprecision(1) << mine_rate / list_rate;
+            std::cout << "your groups' speed-up over your list: " << speed_up.str() << "x\n";
+        }
+        if (!mine_shown || use_groups || compare) {
+            const auto build_start = clock_type::now();
+            const stage::world world(s, mine_shown ? "auto" : accel);
             std::ostringstream name;
             name << "the library (" << world.kind() << " over " << world.primitives() << " primitives";
             if (world.kind() == "bvh")
                 name << ", " << world.nodes() << " nodes";
             name << ", built in " << std::setprecision(3) << seconds_since(build_start) << " s)";
-            library = trace_timed(world, name.str());
+            library = trace_timed(world, name.str(), 1, library_rate);
         }
 
-        if (compare) {
-            rt::image diff(width, height);
-            std::size_t leaks = 0, extra = 0, other = 0;
+        // where your image and the library's differ
+        rt::image diff(width, height);
+        std::size_t leaks = 0, extra = 0, other = 0;
+        if (!mine.empty() && !library.empty()) {
             for (std::size_t k = 0; k < mine.size(); ++k) {
                 const pixel_hit& a = mine[k];
                 const pixel_hit& b = library[k];
@@ -315,15 +352,18 @@ int main(int argc, char** argv)
                     diff.pixels[k] = rt::color(0.25f); // the same hit
                 }
             }
-            std::cout << "compared " << mine.size() << " rays: " << leaks
-                      << " leaked through your triangles (the library hits, yours misses), " << extra
-                      << " hit only with yours, " << other << " hit a different shape or depth\n";
+            std::cout << yours << " against the library's: " << leaks + extra + other << " of " << mine.size()
+                      << " pixels differ (" << leaks << " leaked through your triangles: the library hits, yours "
+                      << "misses; " << extra << " hit only with yours; " << other
+                      << " hit a different shape or depth)\n";
+        }
+        if (compare) {
             stage::save_image(output, diff, 1.0f);
             std::cout << "wrote " << output << " (red: leaks, blue: only yours, yellow: different, grey: the same)\n";
             return 0;
         }
-        stage::save_image(output, picture_of(use_list ? mine : library, width, height, mode, raw), 1.0f);
-        std::cout << "wrote " << output << " (" << mode << ", " << (use_list ? "your list" : "the library's " + accel)
+        stage::save_image(output, picture_of(mine_shown ? mine : library, width, height, mode, raw), 1.0f);
+        std::cout << "wrote " << output << " (" << mode << ", " << (mine_shown ? yours : "the library's " + accel)
                   << ")\n";
         return 0;
     });

@@ -1,0 +1,133 @@
+// library_slab.cpp - the library's robust slab test, rt::hit_box_robust
+// (include/rt/slab.hpp), against the textbook form (a copy in slab_cases.hpp,
+// never the student's exercise).
+//
+// Where the book's form fails and the robust one holds, counted on two
+// families of rays that all meet the closed unit box (slab_cases.hpp):
+//  - 384 rays lying in a face plane: the book's form gives 0 * inf = NaN and
+//    misses the 128 of them in the planes x = 0 and x = 1 (its max() keeps a
+//    NaN that comes first); the robust one misses none, and no NaN comes out.
+//  - 33635 rays through an edge: in float the book's form culls some of them
+//    (t_near > t_far by rounding); with Ize's factor none is culled.
+// docs/stages/04-going-further.md quotes these counts (tests/docs_figures.cpp).
+#include "rt_doctest.hpp"
+#include "slab_cases.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include <rt/aabb.hpp>
+#include <rt/ray.hpp>
+#include <rt/slab.hpp>
+
+namespace {
+
+using rt::real;
+using rt::vec3;
+
+constexpr bool in_float = std::is_same_v<real, float>;
+const real inf = std::numeric_limits<real>::infinity();
+
+} // namespace
+
+TEST_CASE("the robust slab test: axis-parallel rays, rays in a slab plane, -0, flat and empty boxes, never a NaN")
+{
+    rt::aabb box;
+    box.lo = vec3(-1, -1, -1);
+    box.hi = vec3(1, 2, 3);
+    const real zero = 0, minus_zero = -real(0);
+    real tnear = -1;
+    auto hits = [&](const vec3& o, const vec3& d, real tmin = 0, real tmax = inf) {
+        tnear = std::numeric_limits<real>::quiet_NaN();
+        const bool hit = rt::hit_box_robust(box, rt::ray{o, d}, tmin, tmax, tnear);
+        if (hit)
+            CHECK_FALSE(std::isnan(tnear));
+        return hit;
+    };
+    CHECK(hits({-5, 0, 0}, {1, zero, zero}));
+    CHECK(tnear == 4);
+    CHECK_FALSE(hits({-5, 2.5f, 0}, {1, zero, zero}));
+    CHECK_FALSE(hits({-5, 0, 0}, {-1, zero, zero})); // pointing away
+    // in a slab plane (origin on the plane, direction inside it): the box is closed
+    CHECK(hits({-5, 2, 0}, {1, zero, zero}));
+    CHECK(tnear == 4);
+    CHECK(hits({-5, -1, 0}, {1, zero, zero}));
+    CHECK(hits({-5, 2, 0}, {1, minus_zero, zero}));
+    CHECK(hits({-5, -1, 0}, {1, minus_zero, minus_zero}));
+    CHECK(hits({-1, 0, -7}, {zero, zero, 2})); // in the plane x = lo
+    CHECK(tnear == 3);
+    CHECK(hits({1, 0, -7}, {minus_zero, zero, 2})); // in the plane x = hi, -0
+    CHECK(hits({-5, 2, 3}, {1, minus_zero, zero})); // along an edge
+    CHECK(hits({1, 2, 3}, {minus_zero, minus_zero, -1})); // down an edge from a corner
+    CHECK(tnear == 0);
+    // just outside a plane, parallel to it: a miss
+    CHECK_FALSE(hits({-5, std::nextafter(real(2), real(3)), 0}, {1, zero, zero}));
+    CHECK_FALSE(hits({-5, std::nextafter(real(-1), real(-2)), 0}, {1, minus_zero, zero}));
+    // a flat box (lo = hi on y), met only in its plane or across it
+    box.lo.y = box.hi.y = real(0.5);
+    CHECK(hits({-5, 0.5f, 0}, {1, zero, zero}));
+    CHECK(hits({0, 5, 0}, {zero, -1, zero}));
+    CHECK(tnear == real(4.5));
+    CHECK_FALSE(hits({-5, 0.6f, 0}, {1, zero, zero}));
+    // the interval: an origin inside enters at tmin; tmax before the box, tmin after it
+    box.lo = vec3(-1);
+    box.hi = vec3(1);
+    CHECK(hits({0, 0, 0}, {1, 1, 1}, real(0.25)));
+    CHECK(tnear == real(0.25));
+    CHECK_FALSE(hits({-5, 0, 0}, {1, 0, 0}, 0, 3));
+    CHECK_FALSE(hits({-5, 0, 0}, {1, 0, 0}, 7));
+    CHECK(hits({-5, 0, 0}, {1, 0, 0}, 0, 4)); // touched at exactly tmax: kept
+    // the empty box (lo = +inf, hi = -inf) is met by nothing, tnear untouched
+    box = rt::aabb{};
+    tnear = 42;
+    CHECK_FALSE(rt::hit_box_robust(box, rt::ray{vec3(0), vec3(1, 0, 0)}, 0, inf, tnear));
+    CHECK_FALSE(rt::hit_box_robust(box, rt::ray{vec3(0), vec3(zero, minus_zero, 1)}, 0, inf, tnear));
+    CHECK(tnear == 42);
+}
+
+TEST_CASE("rays in a face plane of the box, the textbook slab test misses those in the x planes, the robust one none")
+{
+    const std::vector<rt::ray> rays = rt_test::face_plane_rays();
+    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
+    const std::size_t robust = rt_test::misses(rays, rt_test::robust_hits);
+    MESSAGE(rays.size() << " rays in a face plane: the textbook form misses " << textbook
+                        << ", the robust one " << robust);
+    CHECK(rays.size() == 384);
+    // the textbook form: all 128 rays in the planes x = 0 and x = 1 (6 x 8 x 4 x 2 / 3), and no other
+    std::size_t in_x_planes = 0, missed_elsewhere = 0;
+    for (const rt::ray& r : rays) {
+        const bool x_plane = r.direction.x == 0;
+        in_x_planes += x_plane ? 1 : 0;
+        if (!x_plane && !rt_test::textbook_hits(rt_test::unit_box(), r))
+            ++missed_elsewhere;
+    }
+    CHECK(in_x_planes == 128);
+    CHECK(textbook == 128);
+    CHECK(missed_elsewhere == 0);
+    CHECK(robust == 0);
+    // and the robust one enters where the ray reaches the face: worked out per ray
+    // (the face's square [1/4, 3/4]^2 is entered where the in-plane line meets it)
+    for (const rt::ray& r : rays) {
+        real tnear = std::numeric_limits<real>::quiet_NaN();
+        REQUIRE(rt::hit_box_robust(rt_test::unit_box(), r, 0, inf, tnear));
+        CHECK_FALSE(std::isnan(tnear));
+        CHECK(tnear >= 0);
+        CHECK(tnear <= 1); // the target, inside the face, is reached at t = 1
+    }
+}
+
+TEST_CASE("rays through a box edge, without Ize's factor the textbook slab test culls some in float, the robust one none")
+{
+    const std::vector<rt::ray> rays = rt_test::edge_rays();
+    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
+    const std::size_t robust = rt_test::misses(rays, rt_test::robust_hits);
+    MESSAGE(rays.size() << " rays through the edge x = 1, y = 0: the textbook form culls " << textbook
+                        << ", the robust one " << robust);
+    CHECK(rays.size() == 33635);
+    CHECK(robust == 0);
+    if (in_float)
+        CHECK(textbook > 0); // in double these rays happen to round the same way on both planes
+}

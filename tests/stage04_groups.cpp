@@ -1,0 +1,402 @@
+// Stage 04 - groups: the ray-box slab test and a hierarchy of boxes over the
+// scene's primitives (include/rt/slab.hpp, include/rt/groups.hpp).
+//
+// The three exercises, each by its contract:
+//  - hit_box_textbook: hits and misses worked out by hand (axis-parallel
+//    rays, -0, an origin inside, the interval [tmin, tmax], the empty box),
+//    then random boxes and rays against the exact answer, on rays that clear
+//    the box's boundary by a margin. Rays that graze an edge or lie in a face
+//    plane are left out: there the book's form may fail, and a more careful
+//    answer must pass too (library_slab.cpp shows the failures on the
+//    library's copy of the book's form).
+//  - build_groups: every item in exactly one leaf, leaves of 1 .. leaf_size
+//    items, each node's box encloses its items and its children's boxes, the
+//    median split (count / 2 to the left) along the longest axis of the
+//    centroids.
+//  - closest_hit_groups: the same hit as closest_hit_list on random scenes
+//    and rays (ties included), and counted item tests: a ray that misses the
+//    root box tests no item; along a row of spheres the nearest is tested
+//    first and the others are skipped.
+//
+// Only stage-04 exercises and unmarked library code are called.
+#include "rt_doctest.hpp"
+#include "test_scenes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <variant>
+#include <vector>
+
+#include <rt/groups.hpp>
+#include <rt/hit_list.hpp>
+#include <rt/scene.hpp>
+#include <rt/slab.hpp>
+
+namespace {
+
+using rt::real;
+using rt::vec3;
+
+const real inf = std::numeric_limits<real>::infinity();
+
+rt::aabb box_of(const vec3& lo, const vec3& hi)
+{
+    rt::aabb b;
+    b.lo = lo;
+    b.hi = hi;
+    return b;
+}
+
+bool encloses(const rt::aabb& outer, const rt::aabb& inner)
+{
+    return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z &&
+           inner.hi.x <= outer.hi.x && inner.hi.y <= outer.hi.y && inner.hi.z <= outer.hi.z;
+}
+
+/// Where the line p + t d is inside the box, in long double from the same
+/// inputs: [enter, exit] (enter > exit: never). Components of d are nonzero.
+void exact_interval(const rt::aabb& box, const rt::ray& r, long double& enter, long double& exit)
+{
+    enter = -std::numeric_limits<long double>::infinity();
+    exit = std::numeric_limits<long double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+        const long double d = r.direction[k], p = r.origin[k];
+        long double t0 = ((long double)box.lo[k] - p) / d, t1 = ((long double)box.hi[k] - p) / d;
+        if (t0 > t1)
+            std::swap(t0, t1);
+        enter = std::max(enter, t0);
+        exit = std::min(exit, t1);
+    }
+}
+
+/// Same hit: t, shape, primitive (for a mesh), point, normals, material.
+bool same_hit(const rt::scene& s, const rt::hit_record& a, const rt::hit_record& b)
+{
+    const bool mesh = a.shape < s.shapes.size() && std::holds_alternative<rt::mesh>(s.shapes[a.shape]);
+    return a.t == b.t && a.shape == b.shape && (!mesh || a.primitive == b.primitive) && a.point == b.point &&
+           a.normal == b.normal && a.geometric_normal == b.geometric_normal && a.material == b.material &&
+           a.front_face == b.front_face;
+}
+
+} // namespace
+
+// =============================================================================
+// The slab test
+// =============================================================================
+
+TEST_CASE("the slab test, hits and misses worked out by hand: axis-parallel rays, -0, the origin inside, tmin and tmax")
+{
+    const rt::aabb box = box_of(vec3(-1, -1, -1), vec3(1, 2, 3));
+    const real zero = 0, minus_zero = -real(0);
+    real tnear = 0;
+    auto hits = [&](const vec3& o, const vec3& d, real tmin = 0, real tmax = inf) {
+        tnear = -42;
+        return rt::hit_box_textbook(box, rt::ray{o, d}, tmin, tmax, tnear);
+    };
+    INFO("the box is [-1, 1] x [-1, 2] x [-1, 3], closed; a hit sets tnear to where the ray enters it");
+    CHECK(hits({-5, 0, 0}, {1, zero, zero}));
+    CHECK(tnear == 4);
+    CHECK(hits({-5, 0, 0}, {2, zero, zero})); // t counts lengths of d
+    CHECK(tnear == 2);
+    CHECK(hits({-5, 0.5f, 1}, {1, minus_zero, minus_zero})); // -0: 1/d is -inf, the ray stays in those slabs
+    CHECK(tnear == 4);
+    CHECK(hits({0, 0, 9}, {zero, minus_zero, -3}));
+    CHECK(tnear == 2);
+    CHECK(hits({-3, -3, -3}, {1, 1, 1})); // through the corner region: enters at x = y = z = -1
+    CHECK(tnear == 2);
+    CHECK(hits({4, 5, 6}, {-1, -1, -1})); // from the far side: enters at x = 1, y = 2, z = 3 at t = 3
+    CHECK(tnear == 3);
+    INFO("misses: beside the box, pointing away, parallel outside a slab with +0 or -0");
+    CHECK_FALSE(hits({-5, 2.5f, 0}, {1, zero, zero}));
+    CHECK(tnear == -42); // a miss leaves tnear as it was
+    CHECK_FALSE(hits({-5, 0, 0}, {-1, zero, zero}));
+    CHECK_FALSE(hits({-5, 0, 4}, {1, zero, minus_zero}));
+    CHECK_FALSE(hits({0, -3, 0}, {minus_zero, minus_zero, 1}));
+    CHECK_FALSE(hits({-3, -3, -3}, {1, -1, 1}));
+    INFO("the interval [tmin, tmax]: an origin inside enters at tmin; the box before tmin or beyond tmax is missed");
+    CHECK(hits({0, 0, 0}, {1, 1, 1}, real(0.25)));
+    CHECK(tnear == real(0.25));
+    CHECK(hits({0, 0, 0}, {1, 1, 1}));
+    CHECK(tnear == 0);
+    CHECK_FALSE(hits({-5, 0, 0}, {1, zero, zero}, 0, 3)); // it enters at 4
+    CHECK_FALSE(hits({-5, 0, 0}, {1, zero, zero}, 7));    // it leaves at 6
+    CHECK(hits({-5, 0, 0}, {1, zero, zero}, 5, 5.5f));
+    CHECK(tnear == 5);
+    CHECK_FALSE(hits({5, 0, 0}, {1, zero, zero})); // behind the ray
+}
+
+TEST_CASE("the slab test finds no hit in the empty box")
+{
+    const rt::aabb empty; // lo = +inf, hi = -inf
+    real tnear = -42;
+    CHECK_FALSE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 2, 3)}, 0, inf, tnear));
+    CHECK_FALSE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 0, -real(0))}, 0, inf, tnear));
+    CHECK(tnear == -42);
+}
+
+TEST_CASE("the slab test on random boxes and rays agrees with the exact interval where the ray clears the boundary")
+{
+    std::mt19937 random(14);
+    std::uniform_real_distribution<real> pos(-10, 10), size(real(0.01), 5), scale(real(0.001), 100);
+    std::size_t hits = 0, misses = 0, checked = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const real lx = pos(random);
+        const real ly = pos(random);
+        const real lz = pos(random);
+        const real sx = size(random);
+        const real sy = size(random);
+        const real sz = size(random);
+        const rt::aabb box = box_of(vec3(lx, ly, lz), vec3(lx + sx, ly + sy, lz + sz));
+        const real ox = pos(random);
+        const real oy = pos(random);
+        const real oz = pos(random);
+        const real tx = pos(random);
+        const real ty = pos(random);
+        const real tz = pos(random);
+        const real stretch = scale(random);
+        // half the rays aimed at a point of the box (hits), half anywhere (mostly misses)
+        const vec3 aim = k % 2 == 0 ? box.lo + (vec3(tx, ty, tz) + vec3(10)) / real(20) * box.extent() : vec3(tx, ty, tz);
+        rt::ray r{vec3(ox, oy, oz), (aim - vec3(ox, oy, oz)) * stretch};
+        if (r.direction.x == 0 || r.direction.y == 0 || r.direction.z == 0)
+            continue;
+        long double enter = 0, exit = 0;
+        exact_interval(box, r, enter, exit);
+        enter = std::max(enter, 0.0L);
+        // clear of the boundary: the overlap (or the gap) is a thousandth of the distance
+        const long double margin = 1e-3L * (std::fabs(enter) + std::fabs(exit) + 1e-3L);
+        real tnear = -42;
+        const bool hit = rt::hit_box_textbook(box, r, 0, inf, tnear);
+        if (exit - enter > margin) {
+            ++checked;
+            ++hits;
+            CAPTURE(r);
+            CAPTURE(box);
+            REQUIRE(hit);
+            CHECK(std::fabs((long double)tnear - enter) <= 1e-4L * (enter + 1e-6L));
+        } else if (enter - exit > margin) {
+            ++checked;
+            ++misses;
+            CAPTURE(r);
+            CAPTURE(box);
+            REQUIRE_FALSE(hit);
+        }
+    }
+    MESSAGE(checked << " rays checked: " << hits << " clear hits, " << misses << " clear misses");
+    CHECK(hits > 1000);
+    CHECK(misses > 1000);
+}
+
+// =============================================================================
+// Building the groups
+// =============================================================================
+
+namespace {
+
+/// Checks every promise of build_groups on `g` built from `items`.
+void check_groups(const rt::groups& g, const std::vector<rt::group_item>& items, std::size_t leaf_size)
+{
+    CAPTURE(leaf_size);
+    REQUIRE(g.items.size() == items.size());
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        INFO("g.items is the list of items given, in the same order");
+        REQUIRE(g.items[i].shape == items[i].shape);
+        REQUIRE(g.items[i].primitive == items[i].primitive);
+    }
+    REQUIRE(g.order.size() == items.size());
+    if (items.empty()) {
+        CHECK(g.nodes.empty());
+        return;
+    }
+    REQUIRE_FALSE(g.nodes.empty());
+    REQUIRE(g.nodes[0].first == 0);
+    REQUIRE(g.nodes[0].count == items.size());
+    // walk the tree from the root: every node reached once, every item in one leaf
+    std::vector<int> in_leaves(items.size(), 0), reached(g.nodes.size(), 0);
+    std::vector<std::uint32_t> to_do{0};
+    std::size_t bad_boxes = 0, bad_splits = 0, bad_leaves = 0, bad_children = 0;
+    while (!to_do.empty()) {
+        const std::uint32_t index = to_do.back();
+        to_do.pop_back();
+        REQUIRE(index < g.nodes.size());
+        REQUIRE(reached[index] == 0); // a tree: no node is a child twice
+        reached[index] = 1;
+        const rt::group_node& node = g.nodes[index];
+        REQUIRE(std::size_t(node.first) + node.count <= g.order.size());
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+            REQUIRE(g.order[k] < items.size());
+            bad_boxes += encloses(node.box, items[g.order[k]].box) ? 0 : 1;
+        }
+        if (node.leaf()) {
+            bad_leaves += node.count >= 1 && node.count <= leaf_size ? 0 : 1;
+            for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+                ++in_leaves[g.order[k]];
+            continue;
+        }
+        REQUIRE(node.left < g.nodes.size());
+        REQUIRE(node.right < g.nodes.size());
+        const rt::group_node& left = g.nodes[node.left];
+        const rt::group_node& right = g.nodes[node.right];
+        // the median split: count / 2 to the left, the rest to the right, in order
+        bad_children += node.count > leaf_size && left.first == node.first && left.count == node.count / 2 &&
+                                right.first == node.first + node.count / 2 &&
+                                right.count == node.count - node.count / 2
+                            ? 0
+                            : 1;
+        bad_boxes += encloses(node.box, left.box) && encloses(node.box, right.box) ? 0 : 1;
+        // along an axis where the centroids spread the most, no left centroid beyond a right one
+        rt::aabb centroids;
+        for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+            centroids.grow(items[g.order[k]].centroid);
+        const vec3 spread = centroids.extent();
+        const real widest = std::max(spread.x, std::max(spread.y, spread.z));
+        bool separated = false;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (spread[axis] != widest)
+                continue;
+            real left_max = -inf, right_min = inf;
+            for (std::uint32_t k = left.first; k < left.first + left.count; ++k)
+                left_max = std::max(left_max, items[g.order[k]].centroid[axis]);
+            for (std::uint32_t k = right.first; k < right.first + right.count; ++k)
+                right_min = std::min(right_min, items[g.order[k]].centroid[axis]);
+            separated = separated || left_max <= right_min;
+        }
+        bad_splits += separated ? 0 : 1;
+        to_do.push_back(node.left);
+        to_do.push_back(node.right);
+    }
+    std::size_t not_once = 0;
+    for (int n : in_leaves)
+        not_once += n == 1 ? 0 : 1;
+    INFO("every item in exactly one leaf; leaves of 1 to leaf_size items");
+    CHECK(not_once == 0);
+    CHECK(bad_leaves == 0);
+    INFO("an inner node has more than leaf_size items: count / 2 go left (first, count / 2), the rest right");
+    CHECK(bad_children == 0);
+    INFO("each box encloses its items' boxes and its children's boxes");
+    CHECK(bad_boxes == 0);
+    INFO("the split is at the median along the longest axis of the centroids' box");
+    CHECK(bad_splits == 0);
+    std::size_t unreached = 0;
+    for (int n : reached)
+        unreached += n == 1 ? 0 : 1;
+    CHECK(unreached == 0); // no node outside the tree
+}
+
+} // namespace
+
+TEST_CASE("the groups hold every item in exactly one leaf, boxes enclose their children, the split is at the median")
+{
+    std::mt19937 random(41);
+    const rt::scene s = rt_test::random_scene(random, 150, 300, true);
+    const std::vector<rt::group_item> items = rt::group_items(s);
+    for (const std::size_t leaf_size : {std::size_t(1), std::size_t(2), std::size_t(4), std::size_t(7)})
+        check_groups(rt::build_groups(items, leaf_size), items, leaf_size);
+    // the default is a few items a leaf
+    check_groups(rt::build_groups(items), items, 4);
+}
+
+TEST_CASE("the groups of small and degenerate lists: none, one item, items at the same place")
+{
+    check_groups(rt::build_groups({}, 4), {}, 4);
+    rt::scene one;
+    one.shapes.emplace_back(rt::sphere{vec3(1, 2, 3), 1, 0});
+    const std::vector<rt::group_item> single = rt::group_items(one);
+    const rt::groups g = rt::build_groups(single, 4);
+    check_groups(g, single, 4);
+    REQUIRE(g.nodes.size() == 1);
+    CHECK(g.nodes[0].leaf());
+    // twenty spheres at one place: the centroids do not spread at all, the median still splits by count
+    rt::scene same;
+    for (int k = 0; k < 20; ++k)
+        same.shapes.emplace_back(rt::sphere{vec3(0), real(1 + k), 0});
+    const std::vector<rt::group_item> stacked = rt::group_items(same);
+    check_groups(rt::build_groups(stacked, 2), stacked, 2);
+}
+
+// =============================================================================
+// The closest hit over the groups
+// =============================================================================
+
+TEST_CASE("the closest hit over the groups is the closest hit of the list on random scenes and rays, ties included")
+{
+    for (const unsigned seed : {3u, 17u}) {
+        std::mt19937 random(seed);
+        const rt::scene s = rt_test::random_scene(random, seed == 3 ? 300 : 150, seed == 3 ? 600 : 300, seed == 17);
+        const std::vector<rt::ray> rays = rt_test::random_rays(random, 1500);
+        for (const std::size_t leaf_size : {std::size_t(1), std::size_t(4)}) {
+            const rt::groups g = rt::build_groups(rt::group_items(s), leaf_size);
+            auto hit_item = [&](std::uint32_t i, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec) {
+                return rt::hit_group_item(s, g.items[i], r, tmin, tmax, rec);
+            };
+            std::size_t hits = 0, different = 0;
+            for (std::size_t k = 0; k < rays.size(); ++k) {
+                const real tmax = k % 4 == 3 ? real(6) : inf; // some rays end early
+                rt::hit_record from_list, from_groups;
+                from_groups.t = -42;
+                const bool a = rt::closest_hit_list(s, rays[k], 0, tmax, from_list);
+                const bool b = rt::closest_hit_groups(g, rays[k], 0, tmax, from_groups, hit_item);
+                hits += a ? 1 : 0;
+                if (a != b || (a && !same_hit(s, from_list, from_groups)) || (!b && from_groups.t != -42)) {
+                    if (different == 0) {
+                        CAPTURE(seed);
+                        CAPTURE(leaf_size);
+                        CAPTURE(rays[k]);
+                        CAPTURE(from_list);
+                        CAPTURE(from_groups);
+                        CHECK(a == b); // the first difference, in full
+                        CHECK(same_hit(s, from_list, from_groups));
+                    }
+                    ++different;
+                }
+            }
+            MESSAGE("seed " << seed << ", leaf size " << leaf_size << ": " << rays.size() << " rays, " << hits
+                            << " hits, " << different << " differ from the list");
+            CHECK(hits > 100);
+            CHECK(different == 0);
+        }
+    }
+}
+
+TEST_CASE("a ray that misses the root box tests no item, and along a row of spheres only the nearest is tested")
+{
+    rt::scene s; // 64 unit spheres along x at x = 0, 3, 6, ..., 189
+    for (int k = 0; k < 64; ++k)
+        s.shapes.emplace_back(rt::sphere{vec3(real(3 * k), 0, 0), 1, 0});
+    const rt::groups g = rt::build_groups(rt::group_items(s), 1);
+    std::size_t tests = 0;
+    auto counting = [&](std::uint32_t i, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec) {
+        ++tests;
+        return rt::hit_group_item(s, g.items[i], r, tmin, tmax, rec);
+    };
+    rt::hit_record rec;
+    rec.t = -42;
+    INFO("above the row, parallel to it: the root box is missed, no item is tested");
+    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 5, 0), vec3(1, 0, 0)}, 0, inf, rec, counting));
+    CHECK(tests == 0);
+    CHECK(rec.t == -42);
+    INFO("across the row between two spheres (x = 1.5): inside the root box, outside every leaf's");
+    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(1.5f, -10, 0), vec3(0, 1, 0)}, 0, inf, rec, counting));
+    CHECK(tests == 0);
+    INFO("along the row from the left: the nearer child first, so sphere 0 is hit first and every other box, "
+         "which starts beyond that hit, is skipped: one item tested");
+    tests = 0;
+    REQUIRE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, counting));
+    CHECK(rec.shape == 0);
+    CHECK(rec.t == 9);
+    CHECK(tests == 1);
+    INFO("along the row from the right: sphere 63 first, one item tested");
+    tests = 0;
+    REQUIRE(rt::closest_hit_groups(g, rt::ray{vec3(200, 0, 0), vec3(-1, 0, 0)}, 0, inf, rec, counting));
+    CHECK(rec.shape == 63);
+    CHECK(rec.t == 200 - 189 - 1);
+    CHECK(tests == 1);
+    INFO("an empty scene: no groups, no hit");
+    const rt::groups none = rt::build_groups({}, 4);
+    tests = 0;
+    CHECK_FALSE(rt::closest_hit_groups(none, rt::ray{vec3(0), vec3(1, 0, 0)}, 0, inf, rec, counting));
+    CHECK(tests == 0);
+}
