@@ -42,11 +42,18 @@ inline void check_closed_form_hits(const method& m)
         const rt::ray r{rt::vec3(0), rt::vec3(0, 0, -scale)};
         rt::hit_record rec;
         INFO("the ray from the origin along -z with |d| = " << double(scale) << " meets the sphere at t = "
-             << 4 / double(scale) << " (entering) and t = " << 6 / double(scale)
-             << " (leaving): expected the nearer root, t = " << 4 / double(scale)
-             << " (t counts lengths of d: do not normalise d)");
+             << 4 / double(scale) << " (entering) and t = " << 6 / double(scale) << " (leaving)");
         REQUIRE_MESSAGE(m.hit(s, r, 0, infinity, rec), "expected a hit: the ray points at the sphere's centre");
-        CHECK(rec.t == real(4) / scale); // every step is exact for these inputs
+        const real nearer = real(4) / scale, farther = real(6) / scale; // every step is exact for these inputs
+        // a std::string: doctest prints a char* in INFO as a pointer
+        const std::string diagnosis = rec.t == farther ? "found the far root: return the smaller root first, the larger "
+                                                   "only when the smaller is outside [tmin, tmax]"
+                                : (scale != 1 && (rec.t == 4 || rec.t == 6))
+                                    ? "found a distance, not a multiple of d: t counts lengths of d, do not normalise d"
+                                    : "found neither root";
+        INFO("expected the nearer root t = " << double(nearer) << ", found t = " << double(rec.t) << ": "
+                                             << (rec.t == nearer ? std::string("right") : diagnosis));
+        REQUIRE(rec.t == nearer);
         CHECK(rec.point == rt::vec3(0, 0, -4));
         CHECK(rec.normal == rt::vec3(0, 0, 1));
         CHECK(rec.geometric_normal == rt::vec3(0, 0, 1));
@@ -94,13 +101,13 @@ inline void check_ray_from_inside(const method& m)
         CAPTURE(k);
         CAPTURE(r);
         REQUIRE_MESSAGE(m.hit(s, r, 0, infinity, rec), "expected a hit: every ray from inside leaves the sphere");
-        CHECK_MESSAGE(rec.t > 0, "expected the root ahead of the origin (t > 0)");
-        CHECK_FALSE_MESSAGE(rec.front_face, "expected front_face = false: the ray starts inside the sphere");
-        CHECK_MESSAGE(glm::dot(rec.normal, r.direction) < 0, "expected the normal to face the ray");
-        CHECK_MESSAGE(glm::dot(rec.normal, rec.point - s.center) < 0, "expected the inward normal");
+        REQUIRE_MESSAGE(rec.t > 0, "expected the root ahead of the origin (t > 0)");
+        REQUIRE_FALSE_MESSAGE(rec.front_face, "expected front_face = false: the ray starts inside the sphere");
+        REQUIRE_MESSAGE(glm::dot(rec.normal, r.direction) < 0, "expected the normal to face the ray");
+        REQUIRE_MESSAGE(glm::dot(rec.normal, rec.point - s.center) < 0, "expected the inward normal");
         // and it is the only root ahead: nothing further along the ray
         rt::hit_record beyond;
-        CHECK_FALSE_MESSAGE(m.hit(s, r, rec.t * real(1.001), infinity, beyond),
+        REQUIRE_FALSE_MESSAGE(m.hit(s, r, rec.t * real(1.001), infinity, beyond),
                             "expected no second hit beyond t = " << double(rec.t) << ": a ray from inside has one root ahead");
     }
 }
@@ -214,22 +221,23 @@ inline near_bounds check_random_rays_at_near_spheres(const method& m, const near
         if (!m.hit(s, r, 0, infinity, rec))
             continue;
         ++hits;
-        CHECK_MESSAGE(rec.t > 0, "expected a root ahead of the origin: every origin is outside the sphere");
-        CHECK_MESSAGE(rec.front_face, "expected front_face = true: every origin is outside the sphere");
-        CHECK_MESSAGE(glm::dot(rec.normal, r.direction) <= 0, "expected the normal to face the ray");
-        CHECK_MESSAGE(glm::dot(rec.normal, rec.point - s.center) > 0, "expected the outward normal");
-        CHECK_MESSAGE(rec.geometric_normal == rec.normal, "expected geometric_normal == normal: a sphere has no separate shading normal");
-        CHECK_MESSAGE(rec.material == s.material, "expected the sphere's material index in the record");
+        REQUIRE_MESSAGE(rec.t > 0, "expected a root ahead of the origin: every origin is outside the sphere");
+        REQUIRE_MESSAGE(rec.front_face, "expected front_face = true: every origin is outside the sphere, so the nearer "
+                                        "root is where the ray enters (a back face means the far root)");
+        REQUIRE_MESSAGE(glm::dot(rec.normal, r.direction) <= 0, "expected the normal to face the ray");
+        REQUIRE_MESSAGE(glm::dot(rec.normal, rec.point - s.center) > 0, "expected the outward normal");
+        REQUIRE_MESSAGE(rec.geometric_normal == rec.normal, "expected geometric_normal == normal: a sphere has no separate shading normal");
+        REQUIRE_MESSAGE(rec.material == s.material, "expected the sphere's material index in the record");
         const real scale = std::max({largest(r.origin), largest(rec.point), largest(s.center), s.radius});
         const wide distance = std::sqrt(std::pow(wide(rec.point.x) - s.center.x, 2) + std::pow(wide(rec.point.y) - s.center.y, 2) +
                                         std::pow(wide(rec.point.z) - s.center.z, 2));
         const double off_sphere = double(std::fabs(distance - s.radius) / ulp_at(scale));
-        CHECK_MESSAGE(off_sphere <= bound.on_sphere, "expected the hit point on the sphere within " << bound.on_sphere
+        REQUIRE_MESSAGE(off_sphere <= bound.on_sphere, "expected the hit point on the sphere within " << bound.on_sphere
                                                                                                    << " ulps");
         const wide normal_length = std::sqrt(wide(rec.normal.x) * rec.normal.x + wide(rec.normal.y) * rec.normal.y +
                                              wide(rec.normal.z) * rec.normal.z);
         const double off_unit = double(std::fabs(normal_length - 1) / ulp_at(1));
-        CHECK_MESSAGE(off_unit <= bound.unit_normal, "expected a unit normal, within " << bound.unit_normal << " ulps of 1");
+        REQUIRE_MESSAGE(off_unit <= bound.unit_normal, "expected a unit normal, within " << bound.unit_normal << " ulps of 1");
         worst.on_sphere = std::max(worst.on_sphere, off_sphere);
         worst.unit_normal = std::max(worst.unit_normal, off_unit);
     }
@@ -331,17 +339,18 @@ inline void check_against_exact_roots(const method& m, double ulps)
         REQUIRE(exact_hit == aim_inside); // the reference itself: these rays are far from the silhouette
         rt::hit_record rec;
         const bool hit = m.hit(s, r, 0, infinity, rec);
-        INFO("the ray passes " << double(reach) << " R from the centre: expected " << (aim_inside ? "a hit" : "a miss"));
+        INFO("the ray passes " << double(reach) << " R from the centre: expected " << std::string(aim_inside ? "a hit" : "a miss"));
         REQUIRE(hit == aim_inside);
         if (!aim_inside) {
             ++misses;
             continue;
         }
         ++hits;
+        REQUIRE_MESSAGE(rec.front_face, "expected front_face = true: the origin is outside, so the nearer root is where "
+                                        "the ray enters (a back face means the far root)");
         INFO("expected the nearer root t = " << double(exact) << " (exact, in long double) within " << ulps
                                              << " ulps, found t = " << double(rec.t));
-        CHECK(error_ulps(rec.t, exact) <= ulps);
-        CHECK_MESSAGE(rec.front_face, "expected front_face = true: the origin is outside");
+        REQUIRE(error_ulps(rec.t, exact) <= ulps);
     }
     CHECK(hits == 2000);
     CHECK(misses == 1000);

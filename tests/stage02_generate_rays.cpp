@@ -20,9 +20,7 @@ const rt::real tol = rt::real(1e-5);
 
 void check_near(const rt::vec3& got, const rt::vec3& want)
 {
-    CAPTURE(got.x);
-    CAPTURE(got.y);
-    CAPTURE(got.z);
+    INFO("expected " << rt_doctest::text(want) << ", found " << rt_doctest::text(got));
     CHECK(got.x == doctest::Approx(want.x).epsilon(tol).scale(1));
     CHECK(got.y == doctest::Approx(want.y).epsilon(tol).scale(1));
     CHECK(got.z == doctest::Approx(want.z).epsilon(tol).scale(1));
@@ -95,15 +93,21 @@ TEST_CASE("orthographic rays of pixel (0,0), the centre pixel and the last pixel
     // 4 x 2 image, window [-2, 2] x [-1, 1]: pixel (i, j) centre is at
     // u = -2 + 4 (i + 0.5) / 4 = i - 1.5,  v = -1 + 2 (j + 0.5) / 2 = j - 0.5.
     const rt::ray_generator gen = rt::make_ray_generator(looking_down_minus_z(rt::projection::orthographic), 4, 2);
-    const rt::ray first = rt::pixel_ray(gen, 0, 0);
-    INFO("pixel (0, 0) is the bottom-left pixel: x counts columns from the left, y rows from the bottom "
-         "(FCG 4th ed., sec. 4.3.1), so its ray starts at u = -1.5, v = -0.5; v = +0.5 means rows counted from the top");
-    check_near(first.origin, {-1.5, -0.5, 0});
-    check_near(first.direction, {0, 0, -1});
-    const rt::ray last = rt::pixel_ray(gen, 3, 1);
-    check_near(last.origin, {1.5, 0.5, 0});
-    check_near(last.direction, {0, 0, -1});
+    {
+        const rt::ray first = rt::pixel_ray(gen, 0, 0);
+        INFO("pixel (0, 0) is the bottom-left pixel: x counts columns from the left, y rows from the bottom "
+             "(FCG 4th ed., sec. 4.3.1), so its ray starts at u = -1.5, v = -0.5; v = +0.5 means rows counted from the top");
+        check_near(first.origin, {-1.5, -0.5, 0});
+        check_near(first.direction, {0, 0, -1});
+    }
+    {
+        const rt::ray last = rt::pixel_ray(gen, 3, 1);
+        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its ray starts at u = 1.5, v = 0.5");
+        check_near(last.origin, {1.5, 0.5, 0});
+        check_near(last.direction, {0, 0, -1});
+    }
     const rt::ray centre = rt::generate_ray(gen, 2, 1); // the image centre
+    INFO("the position (2, 1) in pixels is the image centre: its ray starts at the eye, u = v = 0");
     check_near(centre.origin, {0, 0, 0});
 }
 
@@ -111,13 +115,20 @@ TEST_CASE("perspective rays of pixel (0,0), the centre pixel and the last pixel,
 {
     // same window, d = 1: direction = u u + v v - d w = (u, v, -1)
     const rt::ray_generator gen = rt::make_ray_generator(looking_down_minus_z(rt::projection::perspective), 4, 2);
-    const rt::ray first = rt::pixel_ray(gen, 0, 0);
-    INFO("pixel (0, 0) is the bottom-left pixel (rows counted from the bottom): its direction is (-1.5, -0.5, -1)");
-    check_near(first.origin, {0, 0, 0});
-    check_near(first.direction, {-1.5, -0.5, -1});
-    const rt::ray last = rt::pixel_ray(gen, 3, 1);
-    check_near(last.direction, {1.5, 0.5, -1});
+    {
+        const rt::ray first = rt::pixel_ray(gen, 0, 0);
+        INFO("pixel (0, 0) is the bottom-left pixel (rows counted from the bottom): its ray starts at the eye with "
+             "direction (-1.5, -0.5, -1), not normalised (d = -d w + u u + v v)");
+        check_near(first.origin, {0, 0, 0});
+        check_near(first.direction, {-1.5, -0.5, -1});
+    }
+    {
+        const rt::ray last = rt::pixel_ray(gen, 3, 1);
+        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its direction is (1.5, 0.5, -1)");
+        check_near(last.direction, {1.5, 0.5, -1});
+    }
     const rt::ray centre = rt::generate_ray(gen, 2, 1);
+    INFO("the position (2, 1) in pixels is the image centre: its direction is -d w = (0, 0, -1)");
     check_near(centre.direction, {0, 0, -1});
 }
 
@@ -216,6 +227,11 @@ TEST_CASE("the ray image's pixels follow the analytic mapping, top row first")
             const double x = i - 1.5, y = j - 0.5, z = -1;
             const double n = std::sqrt(x * x + y * y + z * z);
             const rt::color c = img.at(i, 1 - j); // row j from the bottom is image row 1 - j
+            CAPTURE(i);
+            CAPTURE(j);
+            INFO("pixel (i, j), j counted from the bottom row, is image row ny - 1 - j (the image is stored top row "
+                 "first); its ray has direction d = (i - 1.5, j - 0.5, -1) and its colour is (d / |d| + 1) / 2 = "
+                 << rt_doctest::text(rt::vec3(rt::real((x / n + 1) / 2), rt::real((y / n + 1) / 2), rt::real((z / n + 1) / 2))));
             CHECK(c.r == doctest::Approx((x / n + 1) / 2));
             CHECK(c.g == doctest::Approx((y / n + 1) / 2));
             CHECK(c.b == doctest::Approx((z / n + 1) / 2));

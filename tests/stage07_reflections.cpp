@@ -18,6 +18,8 @@ namespace {
 
 void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
+    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+                                << rt_doctest::text(got));
     CHECK(got.r == doctest::Approx(r).epsilon(eps));
     CHECK(got.g == doctest::Approx(g).epsilon(eps));
     CHECK(got.b == doctest::Approx(b).epsilon(eps));
@@ -209,5 +211,6 @@ TEST_CASE("a mirror ball far from the origin reflects only the sky: no speckles 
                                             "surface (rt::spawn_ray or rt::offset_ray_origin), not at the hit point");
         speckles_total += speckles;
     }
-    CHECK(speckles_total == 0);
+    CHECK_MESSAGE(speckles_total == 0, "expected no speckles at any scale, found " << speckles_total
+                                                                                  << " over the three scales");
 }

@@ -97,11 +97,14 @@ TEST_CASE("clamp tone map: identity on [0, 1], 0 below, 1 above, NaN to 0")
 
 TEST_CASE("Reinhard tone map x / (1 + x) at known points")
 {
-    CHECK(rt::tonemap_reinhard(0.0f) == 0.0f);
-    CHECK(rt::tonemap_reinhard(1.0f) == doctest::Approx(0.5));  // 1 / 2
-    CHECK(rt::tonemap_reinhard(3.0f) == doctest::Approx(0.75)); // 3 / 4
-    CHECK(rt::tonemap_reinhard(0.25f) == doctest::Approx(0.2)); // (1/4) / (5/4)
-    CHECK(rt::tonemap_reinhard(99.0f) == doctest::Approx(0.99));
+    {
+        INFO("expected T(x) = x / (1 + x): T(0) = 0, T(1) = 1/2, T(3) = 3/4, T(1/4) = 1/5, T(99) = 0.99");
+        CHECK(rt::tonemap_reinhard(0.0f) == 0.0f);
+        CHECK(rt::tonemap_reinhard(1.0f) == doctest::Approx(0.5));  // 1 / 2
+        CHECK(rt::tonemap_reinhard(3.0f) == doctest::Approx(0.75)); // 3 / 4
+        CHECK(rt::tonemap_reinhard(0.25f) == doctest::Approx(0.2)); // (1/4) / (5/4)
+        CHECK(rt::tonemap_reinhard(99.0f) == doctest::Approx(0.99));
+    }
     CHECK_MESSAGE(rt::tonemap_reinhard(std::numeric_limits<float>::infinity()) == 1.0f,
                   "expected T(inf) = 1, the limit of x / (1 + x); computed as written, inf / inf is NaN (a black pixel): "
                   "return 1 for an infinite x");
@@ -111,8 +114,9 @@ TEST_CASE("Reinhard tone map x / (1 + x) at known points")
     float previous = 0;
     for (float x = 0.01f; x < 1000; x *= 1.1f) {
         const float t = rt::tonemap_reinhard(x);
-        CHECK(t > previous);
-        CHECK(t < 1.0f);
+        CAPTURE(x);
+        REQUIRE_MESSAGE(t > previous, "expected T increasing: T(x) = " << t << " after " << previous);
+        REQUIRE_MESSAGE(t < 1.0f, "expected T(x) < 1 for every finite x, found " << t);
         previous = t;
     }
 }
@@ -122,9 +126,12 @@ TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel, th
     // a single overflowing sample (inf radiance) must come out white, not black
     const float inf = std::numeric_limits<float>::infinity();
     const float naive = inf / (1.0f + inf);
-    CHECK(std::isnan(naive));                    // inf / inf
-    CHECK(int(rt::quantize(rt::srgb_encode(naive))) == 0);           // NaN is stored as 0: black
-    CHECK(int(rt::quantize(rt::srgb_encode(rt::tonemap_reinhard(inf)))) == 255); // the limit 1: white
+    CHECK_MESSAGE(std::isnan(naive), "expected inf / (1 + inf) = inf / inf to be NaN (IEEE 754)");
+    CHECK_MESSAGE(int(rt::quantize(rt::srgb_encode(naive))) == 0,
+                  "expected a NaN sample stored as 0, a black pixel (srgb_encode and quantize send NaN to 0)");
+    CHECK_MESSAGE(int(rt::quantize(rt::srgb_encode(rt::tonemap_reinhard(inf)))) == 255,
+                  "expected an infinite sample stored as 255, white: tonemap_reinhard(inf) must be the limit 1, "
+                  "not inf / inf = NaN (found tonemap_reinhard(inf) = " << rt::tonemap_reinhard(inf) << ")");
 }
 
 TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays there")
