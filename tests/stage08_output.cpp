@@ -86,6 +86,7 @@ bool identical(const rt::image& a, const rt::image& b)
 
 TEST_CASE("clamp tone map: identity on [0, 1], 0 below, 1 above, NaN to 0")
 {
+    INFO("expected T(x) = x on [0, 1], 1 above (inf too), 0 below and for NaN (write !(x > 0) to catch NaN)");
     CHECK(rt::tonemap_clamp(0.0f) == 0.0f);
     CHECK(rt::tonemap_clamp(0.25f) == 0.25f);
     CHECK(rt::tonemap_clamp(1.0f) == 1.0f);
@@ -137,6 +138,8 @@ TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel, th
 TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays there")
 {
     // T(x) = x(2.51 x + 0.03) / (x(2.43 x + 0.59) + 0.14)
+    INFO("expected Narkowicz's fit T(x) = x(2.51 x + 0.03) / (x(2.43 x + 0.59) + 0.14), clamped to [0, 1]: T(0) = 0, "
+         "T(1) = 2.54 / 3.16, 1 from x = 7.2417 on (inf too), 0 for x < 0 and NaN, increasing below 7.24");
     CHECK(rt::tonemap_aces(0.0f) == 0.0f);
     CHECK(rt::tonemap_aces(1.0f) == doctest::Approx(2.54 / 3.16)); // 0.8038: "1 maps to about 0.8"
     // T(x) = 1 where 0.08 x^2 - 0.56 x - 0.14 = 0: x = (0.56 + sqrt(0.56^2 + 4 * 0.08 * 0.14)) / 0.16
@@ -151,13 +154,16 @@ TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays 
     float previous = 0;
     for (float x = 0.01f; x < 7.0f; x += 0.01f) {
         const float t = rt::tonemap_aces(x);
-        CHECK(t > previous);
+        CAPTURE(x);
+        REQUIRE(t > previous);
         previous = t;
     }
 }
 
 TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
 {
+    INFO("expected V = 12.92 x for x <= 0.0031308, else 1.055 x^(1/2.4) - 0.055 (IEC 61966-2-1), increasing, with "
+         "srgb_decode its inverse");
     CHECK(rt::srgb_encode(0.0f) == 0.0f);
     CHECK(rt::srgb_encode(1.0f) == doctest::Approx(1.0).epsilon(1e-6)); // 1.055 - 0.055
     // 1.055 * 0.5^(1/2.4) - 0.055
@@ -177,8 +183,9 @@ TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
     for (int k = 0; k <= 1000; ++k) {
         const float x = float(k) / 1000;
         const float v = rt::srgb_encode(x);
-        CHECK(v > previous);
-        CHECK(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3));
+        CAPTURE(x);
+        REQUIRE(v > previous);
+        REQUIRE(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3));
         previous = v;
     }
     // the decode side's own known point: v = 0.04045 is x = 0.04045 / 12.92
@@ -189,6 +196,8 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
 {
     // by hand: x = 0.001 gives sRGB 12.92 x = 0.01292 -> byte 3, but
     // 0.001^(1/2.2) = 0.0433 -> byte 11; at mid-grey 0.18 the two are 118 and 117
+    INFO("by hand: x = 0.001 is byte 3 in sRGB (12.92 x = 0.01292) and 11 with gamma 2.2 (x^(1/2.2) = 0.0433); "
+         "x = 0.18 is 118 and 117");
     CHECK(int(rt::quantize(rt::srgb_encode(0.001f))) == 3);
     CHECK(int(rt::quantize(rt::gamma_encode(0.001f, 2.2f))) == 11);
     CHECK(int(rt::quantize(rt::srgb_encode(0.18f))) == 118);
@@ -207,6 +216,8 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
             worst_above_tenth = std::max(worst_above_tenth, d);
     }
     CAPTURE(worst_x);
+    INFO("expected the two encodings at most 9 byte levels apart, that worst near x = 0.0013 (sRGB's linear "
+         "segment), and at most 2 apart above x = 0.1; found " << worst << " and " << worst_above_tenth);
     CHECK(worst == 9);           // near x = 0.0013, where sRGB is still on its linear segment
     CHECK(worst_x < 0.003f);
     CHECK(worst_above_tenth <= 2);
@@ -214,12 +225,14 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
 
 TEST_CASE("quantise: every level k/255 comes back as k, halves round up, the rest clamps")
 {
+    INFO("expected byte = round(255 clamp(v, 0, 1)), halves up: k / 255 gives k, (k + 0.49) / 255 gives k, "
+         "(k + 0.51) / 255 gives k + 1; below 0 and NaN give 0, above 1 and inf give 255");
     for (int k = 0; k <= 255; ++k) {
         CAPTURE(k);
-        CHECK(int(rt::quantize(float(k) / 255)) == k);
+        REQUIRE(int(rt::quantize(float(k) / 255)) == k);
         if (k < 255) {
-            CHECK(int(rt::quantize((float(k) + 0.49f) / 255)) == k);
-            CHECK(int(rt::quantize((float(k) + 0.51f) / 255)) == k + 1);
+            REQUIRE(int(rt::quantize((float(k) + 0.49f) / 255)) == k);
+            REQUIRE(int(rt::quantize((float(k) + 0.51f) / 255)) == k + 1);
         }
     }
     CHECK(int(rt::quantize(0.5f)) == 128); // 127.5 rounds up
@@ -236,6 +249,8 @@ TEST_CASE("the pipeline runs exposure, tone map, transfer, quantisation in that 
     enc.tonemap = rt::tonemap_kind::reinhard;
     enc.transfer = rt::transfer_kind::srgb;
     // 0.5 * 2^1 = 1 -> Reinhard 1/2 -> sRGB 0.7353570 -> 255 * 0.7353570 = 187.52 -> 188
+    INFO("expected exposure first (x 2^exposure), then the tone map, then the transfer curve, then quantisation: "
+         "0.5 at exposure 1 is 1, Reinhard 1/2, sRGB 0.7353570, byte 188; 0 stays 0; 1e9 is byte 255");
     CHECK(rt::encode_channel(0.5f, enc) == doctest::Approx(0.7353570).epsilon(1e-6));
     const auto bytes = rt::encode_color(rt::color(0.5f, 0.0f, 1e9f), enc);
     CHECK(int(bytes[0]) == 188);
@@ -317,6 +332,8 @@ TEST_CASE("save_image with an encoding: .ppm holds the pipeline's bytes, .png is
     const std::string ppm = read_all(folder.path / "a.ppm");
     const std::vector<std::uint8_t> expected = rt::encode_image(img, enc);
     const std::string header = "P6\n3 1\n255\n";
+    INFO("expected the .ppm to hold the header '" << "P6 3 1 255" << "' then exactly encode_image's bytes, the .png "
+         "to start with the PNG signature, and the .pfm to hold the linear floats unchanged (no exposure, no tone map)");
     REQUIRE(ppm.size() == header.size() + expected.size());
     CHECK(std::equal(expected.begin(), expected.end(), ppm.begin() + std::ptrdiff_t(header.size()),
                      [](std::uint8_t a, char b) { return a == std::uint8_t(b); }));
