@@ -43,6 +43,7 @@
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
 
+#include "reintersect.hpp"
 #include "shadow_acne.hpp"
 #include "sphere_accuracy.hpp"
 
@@ -233,6 +234,69 @@ void shadow_acne_figures(std::map<std::string, figure_function>& all, const std:
     }
 }
 
+/// 984000 as "984,000", as the pages write counts.
+std::string with_commas(long n)
+{
+    std::string digits = std::to_string(n), text;
+    for (std::size_t k = 0; k < digits.size(); ++k) {
+        if (k > 0 && (digits.size() - k) % 3 == 0)
+            text += ',';
+        text += digits[k];
+    }
+    return text;
+}
+
+/// The reintersection counts of docs/stages/06-going-further.md, pbrt's
+/// 1000 shapes x 1000 rays, as tests/library_reintersect.cpp prints and
+/// asserts them (tests/reintersect.hpp): for each kind of shape and row, the
+/// failures and the rays; the mixed-magnitudes case; and the failures of the
+/// renderer's own rows summed.
+void reintersect_figures(std::map<std::string, figure_function>& all, const std::string& p)
+{
+    namespace ri = rt_test::reintersect;
+    const char* row_keys[ri::row_count] = {"spawn_random", "spawn_to_point", "pbr_to_point", "rtg_front", "rtg_to_point",
+                                           "shadow_robust", "shadow_rtg", "mirror_robust", "mirror_rtg"};
+    auto triangles = std::make_shared<std::vector<ri::reintersection>>();
+    auto spheres = std::make_shared<std::vector<ri::reintersection>>();
+    auto of = [](const std::shared_ptr<std::vector<ri::reintersection>>& cache, bool is_triangles) {
+        return [cache, is_triangles]() -> const ri::reintersection& {
+            if (cache->empty())
+                cache->push_back(is_triangles ? ri::triangles(1000, 1000) : ri::spheres(1000, 1000));
+            return cache->front();
+        };
+    };
+    for (const auto& [kind, result] : {std::make_pair(std::string("triangles"), of(triangles, true)),
+                                      std::make_pair(std::string("spheres"), of(spheres, false))}) {
+        const auto get = result;
+        for (int k = 0; k < ri::row_count; ++k) {
+            const std::string row = "stage06.reintersect." + kind + "." + row_keys[k] + ".";
+            all[row + "failures" + p] = [get, k] { return with_commas(get().rows[k].failures); };
+            all[row + "rays" + p] = [get, k] { return with_commas(get().rows[k].rays); };
+        }
+        all["stage06.reintersect." + kind + ".robust_rows_failures" + p] = [get] {
+            long failures = 0;
+            for (int k = 0; k < ri::row_count; ++k)
+                failures += ri::row_is_robust[k] ? get().rows[k].failures : 0;
+            return with_commas(failures);
+        };
+    }
+    auto mixed = std::make_shared<std::vector<ri::mixed_result>>();
+    auto mixed_result = [mixed]() -> const ri::mixed_result& {
+        if (mixed->empty())
+            mixed->push_back(ri::mixed_magnitudes());
+        return mixed->front();
+    };
+    all["stage06.reintersect.mixed.rtg_failures" + p] = [mixed_result] { return with_commas(mixed_result().rtg.failures); };
+    all["stage06.reintersect.mixed.rays" + p] = [mixed_result] { return with_commas(mixed_result().rtg.rays); };
+    all["stage06.reintersect.mixed.spawn_failures" + p] = [mixed_result] { return with_commas(mixed_result().robust.failures); };
+}
+
+void reintersect_figures(std::map<std::string, figure_function>& all)
+{
+    for (const std::string p : {".float", ".double"})
+        reintersect_figures(all, p);
+}
+
 std::map<std::string, figure_function> figures(const fs::path& root)
 {
     std::map<std::string, figure_function> all;
@@ -249,6 +313,7 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     };
     sphere_accuracy_figures(all); // (long double is the exact reference on every supported platform)
     shadow_acne_figures(all);
+    reintersect_figures(all);
     all["stage08.worked_example_byte"] = [] {
         rt::encoding enc;
         enc.exposure = 1.0f;
