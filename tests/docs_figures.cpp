@@ -19,6 +19,8 @@
 //     docs_figures REPO_ROOT --print    (every figure and its value, for pasting)
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -28,6 +30,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -51,7 +54,10 @@
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
 
+#include "reintersect.hpp"
+#include "shadow_acne.hpp"
 #include "slab_cases.hpp"
+#include "sphere_accuracy.hpp"
 
 namespace {
 
@@ -244,6 +250,186 @@ rt::encoding plain_gamma(float gamma)
     return enc;
 }
 
+
+void sphere_accuracy_figures(std::map<std::string, figure_function>& all, const std::string& p);
+void shadow_acne_figures(std::map<std::string, figure_function>& all, const std::string& p);
+
+/// "1e4" for 10000: the power of ten a table row is labelled with.
+std::string power_of_ten(double x)
+{
+    return "1e" + std::to_string(int(std::lround(std::log10(x))));
+}
+
+/// The cells of docs/stages/03-going-further.md: the distance table and the
+/// ground table, as tests/library_sphere_stable.cpp prints and asserts them
+/// (the same functions, tests/sphere_accuracy.hpp), for this build's real.
+/// (Both precisions' names are known, each computed in its own build only.)
+void sphere_accuracy_figures(std::map<std::string, figure_function>& all)
+{
+    for (const std::string p : {".float", ".double"})
+        sphere_accuracy_figures(all, p);
+}
+
+void sphere_accuracy_figures(std::map<std::string, figure_function>& all, const std::string& p)
+{
+    // computed once, on first use, for all the cells
+    auto distances = std::make_shared<std::vector<rt_test::distance_row>>();
+    auto grounds = std::make_shared<std::vector<rt_test::ground_row>>();
+    auto distance_rows = [distances]() -> const std::vector<rt_test::distance_row>& {
+        if (distances->empty())
+            *distances = rt_test::distance_table();
+        return *distances;
+    };
+    auto ground_rows = [grounds]() -> const std::vector<rt_test::ground_row>& {
+        if (grounds->empty())
+            *grounds = rt_test::ground_table();
+        return *grounds;
+    };
+    using rt_test::cell;
+    for (std::size_t k = 0; k < 6; ++k) {
+        const std::string row = "stage03.distance_" + power_of_ten(std::pow(10.0, double(k + 1))) + ".";
+        auto at = [distance_rows, k]() -> const rt_test::distance_row& { return distance_rows().at(k); };
+        all[row + "centred" + p] = [at] { return cell(at().centred[0]) + " / " + cell(at().centred[1]); };
+        all[row + "off_centre" + p] = [at] { return cell(at().off_centre[0]) + " / " + cell(at().off_centre[1]); };
+        all[row + "grazing" + p] = [at] { return cell(at().grazing[0]) + " / " + cell(at().grazing[1]); };
+        all[row + "fan_textbook" + p] = [at] { return rt_test::fan_cell(at().fan[0], at().miss_fan[0]); };
+        all[row + "fan_stable" + p] = [at] { return rt_test::fan_cell(at().fan[1], at().miss_fan[1]); };
+        all[row + "fan_textbook_depth_error" + p] = [at] { return rt_test::depth_cell(at().fan[0].worst_depth_error); };
+    }
+    for (std::size_t k = 0; k < 8; ++k) {
+        const double R = std::pow(10.0, double(2 + k / 2));
+        const std::string row = "stage03.ground_" + power_of_ten(R) + (k % 2 == 0 ? "_h1." : "_h0_25.");
+        auto at = [ground_rows, k]() -> const rt_test::ground_row& { return ground_rows().at(k); };
+        all[row + "exact_t" + p] = [at] { return rt_test::exact_text(at().exact); };
+        all[row + "textbook" + p] = [at] { return cell(at().result[0]); };
+        all[row + "chapter" + p] = [at] { return cell(at().chapter); };
+        all[row + "rt" + p] = [at] { return cell(at().result[1]); };
+    }
+    // the prose: the worst grazing ray of the stable method along the axis, the fan's size, the bound
+    all["stage03.grazing_stable_worst"] = [distance_rows] {
+        rt_test::outcome worst;
+        for (const rt_test::distance_row& row : distance_rows())
+            if (row.grazing[1].ulps >= worst.ulps)
+                worst = row.grazing[1];
+        return cell(worst);
+    };
+    all["stage03.fan_size"] = [] { return std::to_string(rt_test::fan_size); };
+    all["stage03.ulp_bound"] = [] { return std::to_string(int(rt_test::ulp_bound)); };
+}
+
+/// The acne table of docs/stages/06-shadows.md (float build), as
+/// tests/stage06_shadows.cpp prints and asserts it (tests/shadow_acne.hpp):
+/// per row, the lit points, the robust method's acne (the stage-06 exercise:
+/// skipped in a kit where it is not done) and the fixed epsilon's. A row that
+/// stands for several settings ("1e-3 ... 1e1") gives their common value, or
+/// all of them when they differ.
+void shadow_acne_figures(std::map<std::string, figure_function>& all)
+{
+    for (const std::string p : {".float", ".double"})
+        shadow_acne_figures(all, p);
+}
+
+void shadow_acne_figures(std::map<std::string, figure_function>& all, const std::string& p)
+{
+    struct group {
+        std::string name;
+        bool moved;
+        int first, last;
+    };
+    std::vector<group> groups = {{"scale_1e-3_to_1e1", false, -3, 1}, {"offset_1e-3_to_1e3", true, -3, 3}};
+    for (int e = 2; e <= 5; ++e)
+        groups.push_back({"scale_1e" + std::to_string(e), false, e, e});
+    for (int e = 4; e <= 5; ++e)
+        groups.push_back({"offset_1e" + std::to_string(e), true, e, e});
+    using count_of = int rt_test::shadow_count::*;
+    for (const group& g : groups) {
+        auto measure = [g](bool robust, count_of field) {
+            std::vector<int> values;
+            for (int e = g.first; e <= g.last; ++e) {
+                rt_test::acne_setting set;
+                set.moved = g.moved;
+                (g.moved ? set.offset_exponent : set.scale_exponent) = e;
+                const rt_test::shadow_count c =
+                    robust ? rt_test::count_shadow_errors(set.scene(), rt_test::robust_visible)
+                           : rt_test::count_shadow_errors(set.scene(), rt_test::fixed_epsilon_visible);
+                values.push_back(c.*field);
+            }
+            std::string text = std::to_string(values.front());
+            if (std::any_of(values.begin(), values.end(), [&](int v) { return v != values.front(); }))
+                for (std::size_t k = 1; k < values.size(); ++k)
+                    text += ", " + std::to_string(values[k]);
+            return text;
+        };
+        const std::string row = "stage06.acne." + g.name + ".";
+        all[row + "lit" + p] = [measure] { return measure(false, &rt_test::shadow_count::lit_points); };
+        all[row + "robust" + p] = [measure] { return measure(true, &rt_test::shadow_count::acne); };
+        all[row + "fixed" + p] = [measure] { return measure(false, &rt_test::shadow_count::acne); };
+    }
+}
+
+/// 984000 as "984,000", as the pages write counts.
+std::string with_commas(long n)
+{
+    std::string digits = std::to_string(n), text;
+    for (std::size_t k = 0; k < digits.size(); ++k) {
+        if (k > 0 && (digits.size() - k) % 3 == 0)
+            text += ',';
+        text += digits[k];
+    }
+    return text;
+}
+
+/// The reintersection counts of docs/stages/06-going-further.md, pbrt's
+/// 1000 shapes x 1000 rays, as tests/library_reintersect.cpp prints and
+/// asserts them (tests/reintersect.hpp): for each kind of shape and row, the
+/// failures and the rays; the mixed-magnitudes case; and the failures of the
+/// renderer's own rows summed.
+void reintersect_figures(std::map<std::string, figure_function>& all, const std::string& p)
+{
+    namespace ri = rt_test::reintersect;
+    const char* row_keys[ri::row_count] = {"spawn_random", "spawn_to_point", "pbr_to_point", "rtg_front", "rtg_to_point",
+                                           "shadow_robust", "shadow_rtg", "mirror_robust", "mirror_rtg"};
+    auto triangles = std::make_shared<std::vector<ri::reintersection>>();
+    auto spheres = std::make_shared<std::vector<ri::reintersection>>();
+    auto of = [](const std::shared_ptr<std::vector<ri::reintersection>>& cache, bool is_triangles) {
+        return [cache, is_triangles]() -> const ri::reintersection& {
+            if (cache->empty())
+                cache->push_back(is_triangles ? ri::triangles(1000, 1000) : ri::spheres(1000, 1000));
+            return cache->front();
+        };
+    };
+    for (const auto& [kind, result] : {std::make_pair(std::string("triangles"), of(triangles, true)),
+                                      std::make_pair(std::string("spheres"), of(spheres, false))}) {
+        const auto get = result;
+        for (int k = 0; k < ri::row_count; ++k) {
+            const std::string row = "stage06.reintersect." + kind + "." + row_keys[k] + ".";
+            all[row + "failures" + p] = [get, k] { return with_commas(get().rows[k].failures); };
+            all[row + "rays" + p] = [get, k] { return with_commas(get().rows[k].rays); };
+        }
+        all["stage06.reintersect." + kind + ".robust_rows_failures" + p] = [get] {
+            long failures = 0;
+            for (int k = 0; k < ri::row_count; ++k)
+                failures += ri::row_is_robust[k] ? get().rows[k].failures : 0;
+            return with_commas(failures);
+        };
+    }
+    auto mixed = std::make_shared<std::vector<ri::mixed_result>>();
+    auto mixed_result = [mixed]() -> const ri::mixed_result& {
+        if (mixed->empty())
+            mixed->push_back(ri::mixed_magnitudes());
+        return mixed->front();
+    };
+    all["stage06.reintersect.mixed.rtg_failures" + p] = [mixed_result] { return with_commas(mixed_result().rtg.failures); };
+    all["stage06.reintersect.mixed.rays" + p] = [mixed_result] { return with_commas(mixed_result().rtg.rays); };
+    all["stage06.reintersect.mixed.spawn_failures" + p] = [mixed_result] { return with_commas(mixed_result().robust.failures); };
+}
+
+void reintersect_figures(std::map<std::string, figure_function>& all)
+{
+    for (const std::string p : {".float", ".double"})
+        reintersect_figures(all, p);
+}
+
 std::map<std::string, figure_function> figures(const fs::path& root)
 {
     std::map<std::string, figure_function> all;
@@ -328,6 +514,13 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage04.slab.edge_rays.robust_misses"] = [] {
         return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::robust_hits));
     };
+    all["stage03.far_spheres.rays"] = [far] {
+        const rt::scene s = rt::load_scene(far);
+        return std::to_string(s.width * s.height);
+    };
+    sphere_accuracy_figures(all); // (long double is the exact reference on every supported platform)
+    shadow_acne_figures(all);
+    reintersect_figures(all);
     all["stage08.worked_example_byte"] = [] {
         rt::encoding enc;
         enc.exposure = 1.0f;

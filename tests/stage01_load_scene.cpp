@@ -33,6 +33,8 @@ TEST_CASE("a camera line loads every field it states")
 {
     const rt::scene s = rt::load_scene_from_string(
         "camera perspective eye 1 2 3 look_at 4 5 6 up 0 0 1 fov 30 focal 2\n");
+    INFO("the line 'camera perspective eye 1 2 3 look_at 4 5 6 up 0 0 1 fov 30 focal 2': expected every field as "
+         "written (kind perspective, fov 30 degrees, focal distance 2) and no window");
     CHECK(s.cam.kind == rt::projection::perspective);
     CHECK(s.cam.eye == rt::vec3(1, 2, 3));
     CHECK(s.cam.look_at == rt::vec3(4, 5, 6));
@@ -47,6 +49,8 @@ TEST_CASE("an orthographic camera loads its window")
 {
     const rt::scene s = rt::load_scene_from_string(
         "image 200 100\ncamera orthographic eye 0 0 5 look_at 0 0 0 window -2 2 -1 1\n");
+    INFO("'image 200 100' and 'camera orthographic ... window -2 2 -1 1': expected an orthographic camera with the "
+         "window l = -2, r = 2, b = -1, t = 1 (in that order) and a 200 x 100 image");
     CHECK(s.cam.kind == rt::projection::orthographic);
     REQUIRE(s.cam.plane.has_value());
     CHECK(s.cam.plane->l == doctest::Approx(-2));
@@ -60,6 +64,8 @@ TEST_CASE("an orthographic camera loads its window")
 TEST_CASE("camera options may come in any order and default when left out")
 {
     const rt::scene a = rt::load_scene_from_string("camera perspective up 0 1 0 eye 0 0 9\n");
+    INFO("options in any order: 'up 0 1 0 eye 0 0 9' sets the eye; what is left out keeps the default of "
+         "rt::camera (look_at the origin, no fov unless given)");
     CHECK(a.cam.eye == rt::vec3(0, 0, 9));
     CHECK(a.cam.look_at == rt::vec3(0, 0, 0));
     const rt::scene b = rt::load_scene_from_string("camera perspective\n");
@@ -73,6 +79,9 @@ TEST_CASE("a mesh path is relative to the scene file and the mesh keeps only wha
                                                    RT_TEST_DATA_DIR);
     REQUIRE(s.shapes.size() == 1);
     const rt::mesh& m = std::get<rt::mesh>(s.shapes[0]);
+    INFO("tests/data/cube.obj, a unit cube centred at the origin with 8 corners and six quad faces, no normals and "
+         "no texture coordinates, scaled by 2 and moved by (1, 0, 0): expected 8 positions, 12 triangles and the "
+         "bounds (0, -1, -1) to (2, 1, 1)");
     CHECK(m.positions.size() == 8);
     CHECK(m.triangles.size() == 12); // six quads, triangulated
     CHECK(m.normals.empty());
@@ -87,6 +96,8 @@ TEST_CASE("scene bounds enclose every shape and nothing more")
     const rt::scene s = rt::load_scene_from_string(
         "sphere center 0 0 0 radius 1\nsphere center 5 0 0 radius 2\ntriangle -3 0 0  0 4 0  0 0 -7\n");
     const rt::aabb box = rt::scene_bounds(s);
+    INFO("spheres (0, 0, 0) r 1 and (5, 0, 0) r 2 and the triangle (-3, 0, 0) (0, 4, 0) (0, 0, -7): expected the "
+         "smallest box holding them, (-3, -2, -7) to (7, 4, 2); an empty scene has an empty box");
     CHECK(box.lo == rt::vec3(-3, -2, -7));
     CHECK(box.hi == rt::vec3(7, 4, 2));
     CHECK(rt::scene_bounds(rt::scene{}).empty());
@@ -169,6 +180,8 @@ TEST_CASE("a camera written as a statement reads back as the same camera")
     cam.fov_degrees = rt::real(37.123456789);
     cam.focal_distance = rt::real(1.75);
     const rt::camera back = rt::parse_camera_statement(rt::camera_statement(cam));
+    INFO("the statement '" << rt::camera_statement(cam) << "' read back: expected every field exactly as written, "
+         "including the fov, and no window");
     CHECK(back.kind == cam.kind);
     CHECK(back.eye == cam.eye); // exactly, not approximately
     CHECK(back.look_at == cam.look_at);
@@ -182,6 +195,7 @@ TEST_CASE("a camera written as a statement reads back as the same camera")
     cam.fov_degrees.reset();
     cam.plane = rt::window{rt::real(-0.3), rt::real(0.9), rt::real(-1) / rt::real(3), rt::real(0.6)};
     const rt::camera flat = rt::parse_camera_statement(rt::camera_statement(cam));
+    INFO("the orthographic statement '" << rt::camera_statement(cam) << "' read back: expected its window exactly");
     CHECK(flat.kind == rt::projection::orthographic);
     REQUIRE(flat.plane.has_value());
     CHECK(flat.plane->l == cam.plane->l);
@@ -198,6 +212,8 @@ TEST_CASE("a bad camera statement is one line whose column counts in the stateme
     } catch (const rt::error& e) {
         message = e.what();
     }
+    INFO("'perspective eye 0 0 1 look_at 0 0 1' (the eye on the point it looks at): expected one line starting "
+         "'--camera:1:' and saying what was expected, found '" << message << "'");
     CHECK(one_line(message));
     CHECK(message.rfind("--camera:1:", 0) == 0);
     CHECK(message.find("expected") != std::string::npos);

@@ -243,3 +243,75 @@ TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last 
     REQUIRE(rt::closest_hit_list(s, rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
     CHECK(rec.primitive == 999);
 }
+
+namespace {
+
+/// What the list asked of the hit function it was given. A shape_hit_function
+/// is a plain function pointer and carries no state, so the one test below
+/// records the calls here (one thread; reset before each use).
+struct recorded_calls {
+    int count = 0;
+    std::vector<int> shapes; // the material index of each shape asked about: the shape's index in the scene
+};
+
+recorded_calls& calls_to_counting_hit()
+{
+    static recorded_calls calls;
+    return calls;
+}
+
+/// A hit function that records each call and answers without geometry: every
+/// sphere is "hit" at t = its radius (if that is in [tmin, tmax]), although
+/// the test's ray passes far from all of them, so only a list that calls
+/// this function (not hit_shape) finds a hit at all.
+bool counting_hit(const rt::shape& item, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec)
+{
+    recorded_calls& calls = calls_to_counting_hit();
+    ++calls.count;
+    const rt::sphere* ball = std::get_if<rt::sphere>(&item);
+    calls.shapes.push_back(ball ? ball->material : -1);
+    if (!ball || !(tmin <= ball->radius && ball->radius <= tmax))
+        return false;
+    rec.t = ball->radius;
+    rec.point = r.at(rec.t);
+    rec.geometric_normal = rec.normal = -glm::normalize(r.direction);
+    rec.front_face = true;
+    rec.material = ball->material;
+    rec.primitive = 0;
+    return true;
+}
+
+} // namespace
+
+TEST_CASE("the list tests every shape with the hit function it is given, once each, and keeps that function's closest hit")
+{
+    // Four spheres well off the ray: hit_shape misses them all; counting_hit
+    // "hits" each at t = its radius, so the closest is shape 1 (t = 1).
+    rt::scene s;
+    const real radii[] = {3, 1, 2, 5};
+    for (int k = 0; k < 4; ++k) {
+        rt::sphere ball;
+        ball.center = vec3(real(100 * (k + 1)), 100, 0);
+        ball.radius = radii[k];
+        ball.material = k; // names the shape in the recorded calls
+        s.shapes.emplace_back(ball);
+    }
+    const rt::ray down_z{{0, 0, 0}, {0, 0, -1}};
+    calls_to_counting_hit() = recorded_calls{};
+    rt::hit_record rec;
+    const bool hit = rt::closest_hit_list(s, down_z, 0, rt::infinity, rec, counting_hit);
+    const recorded_calls calls = calls_to_counting_hit();
+    std::string asked;
+    for (int shape : calls.shapes)
+        asked += (asked.empty() ? "" : ", ") + std::to_string(shape);
+    INFO("closest_hit_list must test each shape with its parameter `hit` (the stage-04 program passes the textbook "
+         "methods through it), not call hit_shape itself: expected 4 calls, for shapes 0, 1, 2, 3, found "
+         << calls.count << " calls, for shapes (" << asked << ")");
+    REQUIRE(calls.count == 4);
+    CHECK(asked == "0, 1, 2, 3"); // in scene order, each once
+    INFO("the hit function reports shapes 0..3 hit at t = 3, 1, 2, 5: expected the closest, shape 1 at t = 1");
+    REQUIRE(hit);
+    CHECK(rec.shape == 1u);
+    CHECK(rec.t == 1);
+    CHECK(rec.material == 1);
+}

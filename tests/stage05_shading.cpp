@@ -52,15 +52,23 @@ rt::color shade_at(const rt::scene& s, double x, double y)
 {
     const rt::ray r{rt::vec3(rt::real(x), rt::real(y), 10), rt::vec3(0, 0, -1)};
     rt::hit_record hit;
-    REQUIRE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit));
+    REQUIRE_MESSAGE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit),
+                    "expected the test's ray to hit the sphere (the library's hit_sphere: a fault of the test scene, not of your shading)");
     return rt::direct_lighting(s, hit, r.direction, always_visible);
 }
 
-void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
+/// Whether got is (r, g, b) within eps; each channel a CHECK that prints both colours.
+bool check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
+    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+                                << rt_doctest::text(got));
+    const bool ok_r = got.r == doctest::Approx(r).epsilon(eps);
+    const bool ok_g = got.g == doctest::Approx(g).epsilon(eps);
+    const bool ok_b = got.b == doctest::Approx(b).epsilon(eps);
     CHECK(got.r == doctest::Approx(r).epsilon(eps));
     CHECK(got.g == doctest::Approx(g).epsilon(eps));
     CHECK(got.b == doctest::Approx(b).epsilon(eps));
+    return ok_r && ok_g && ok_b;
 }
 
 } // namespace
@@ -101,9 +109,12 @@ TEST_CASE("one sphere, one directional light, orthographic view: pixels equal th
                 expected[c] = ka[c] * Ia + kd[c] * I[c] * nz + ks * I[c] * std::pow(nz, 20);
             CAPTURE(u);
             CAPTURE(v);
-            check_color(shade_at(s, u, v), expected[0], expected[1], expected[2], 1e-4);
+            INFO("the sphere point under (u, v) has n = (u, v, nz), nz = " << nz << ", and v = l = h = +z, so "
+                 "L = ka Ia + kd I nz + ks I nz^20 (FCG 4th ed., sec. 4.5.2)");
+            if (!check_color(shade_at(s, u, v), expected[0], expected[1], expected[2], 1e-4))
+                return; // one pixel shows the cause; the other 51 would repeat it
         }
-    CHECK(pixels_on_sphere == 52);
+    CHECK_MESSAGE(pixels_on_sphere == 52, "expected 52 of the 64 pixel centres inside the sphere's disc (counted by hand)");
 }
 
 TEST_CASE("the ray through the sphere's centre: n = l = v = h, every term at its maximum")
@@ -171,7 +182,8 @@ TEST_CASE("point lights: no falloff by default, as in the book, 1/r^2 with the o
     s.ambient = rt::color(0.0f);
     const rt::ray r{rt::vec3(0, 0, 10), rt::vec3(0, 0, -1)};
     rt::hit_record hit;
-    REQUIRE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit));
+    REQUIRE_MESSAGE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit),
+                    "expected the test's ray to hit the sphere (the library's hit_sphere: a fault of the test scene, not of your shading)");
     check_color(rt::direct_lighting(s, hit, r.direction, always_visible), 0.7, 0.45, 0.24);
     rt::shading_options falloff;
     falloff.light_falloff = true;
@@ -190,6 +202,8 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
     check_color(rt::blinn_phong(m, n, mirror, l, rt::color(2.0f)), 1.0, 0.5, 2.0);
     // away from the mirror direction the highlight falls: n.h < 1
     const rt::color off = rt::blinn_phong(m, n, glm::normalize(rt::vec3(-1, 2, 0)), l, rt::color(2.0f));
+    INFO("away from the mirror direction n.h < 1, so the highlight ks I (n.h)^p falls below its peak ks I = 1 "
+         "(red) but stays positive, found " << off.r);
     CHECK(off.r < 1.0f);
     CHECK(off.r > 0.0f);
     // a light below the surface: n.l < 0 clamps the diffuse term to 0

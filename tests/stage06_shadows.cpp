@@ -3,18 +3,15 @@
 // surface robustly (Wachter and Binder, Ray Tracing Gems ch. 6).
 //
 // The scenes: a sphere above a plane, with a point light on the plane's normal
-// through the sphere's centre. The shadow is then a disc whose radius follows
-// from similar triangles: light height H, centre height C, radius R give the
-// tangent cone's half angle a with sin a = R / (H - C), and the shadow radius
-// on the plane is H tan a. Scenes and rays are built here; the intersection is
-// the library's (unmarked) accelerator.
+// through the sphere's centre, so that the shadow is an analytic disc
+// (tests/shadow_acne.hpp, shared with docs_figures, which checks the acne
+// table of docs/stages/06-shadows.md). Scenes and rays are built here; the
+// intersection is the library's (unmarked) accelerator.
 #include "rt_doctest.hpp"
+#include "shadow_acne.hpp"
 
-#include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
-#include <vector>
 
 #include <rt/accelerator.hpp>
 #include <rt/light.hpp>
@@ -23,142 +20,54 @@
 
 namespace {
 
-struct shadow_scene {
-    rt::scene s;
-    rt::vec3 o, n, t1, t2; // plane origin, normal and in-plane axes
-    double scale;
-    double shadow_radius;  // in units of `scale`
-};
-
-/// A tilted square plane of half size 10, a unit sphere at height 2 and a point
-/// light at height 8, all scaled by `scale` and moved to `origin`.
-shadow_scene make_scene(double scale, rt::vec3 origin)
-{
-    shadow_scene q;
-    q.scale = scale;
-    q.o = origin;
-    q.n = glm::normalize(rt::vec3(0.3f, 1.0f, 0.2f));
-    q.t1 = glm::normalize(glm::cross(q.n, rt::vec3(0, 0, 1)));
-    q.t2 = glm::cross(q.t1, q.n);
-    const rt::real s = rt::real(scale);
-    auto at = [&](double x, double z) { return q.o + s * (rt::real(x) * q.t1 + rt::real(z) * q.t2); };
-    rt::triangle a, b;
-    a.a = at(-10, -10);
-    a.b = at(10, -10);
-    a.c = at(10, 10);
-    b.a = at(-10, -10);
-    b.b = at(10, 10);
-    b.c = at(-10, 10);
-    q.s.shapes.emplace_back(a);
-    q.s.shapes.emplace_back(b);
-    rt::sphere ball;
-    ball.center = q.o + s * rt::real(2) * q.n;
-    ball.radius = s;
-    q.s.shapes.emplace_back(ball);
-    rt::light bulb;
-    bulb.kind = rt::light_kind::point;
-    bulb.position = q.o + s * rt::real(8) * q.n;
-    q.s.lights.push_back(bulb);
-    const double H = 8, C = 2, R = 1, sin_a = R / (H - C);
-    q.shadow_radius = H * sin_a / std::sqrt(1 - sin_a * sin_a);
-    return q;
-}
-
-struct shadow_count {
-    int lit_points = 0, shadow_points = 0;
-    int acne = 0;  // points outside the shadow that the test calls shadowed
-    int leaks = 0; // points inside the shadow that the test calls lit
-};
-
-/// Looks at the plane from above on a 73 x 73 grid of points (spacing 0.25) and
-/// compares each plane hit's visibility of the light with the analytic disc,
-/// leaving out a band of one grid step around the shadow's edge.
-template <class Visible>
-shadow_count count_errors(const shadow_scene& q, Visible&& visible)
-{
-    const rt::accelerator accel(q.s);
-    const rt::real s = rt::real(q.scale);
-    const rt::vec3 eye = q.o + s * (rt::real(6) * q.t1 + rt::real(12) * q.n);
-    const double step = 0.25;
-    shadow_count count;
-    for (int i = -36; i <= 36; ++i)
-        for (int k = -36; k <= 36; ++k) {
-            const rt::vec3 target = q.o + s * (rt::real(i * step) * q.t1 + rt::real(k * step) * q.t2);
-            const rt::ray r{eye, target - eye};
-            rt::hit_record hit;
-            if (!accel.closest_hit(r, 0, rt::real(1e30), hit) || hit.shape > 1)
-                continue; // the ball is in the way
-            const rt::vec3 local = (hit.point - q.o) / s;
-            const rt::vec3 radial = local - glm::dot(local, q.n) * q.n;
-            const double rho = double(glm::length(radial));
-            const rt::light_sample sample = rt::sample_light(q.s.lights[0], hit.point);
-            const bool lit = visible(accel, hit, sample);
-            if (rho > q.shadow_radius + step) {
-                ++count.lit_points;
-                count.acne += lit ? 0 : 1;
-            } else if (rho < q.shadow_radius - step) {
-                ++count.shadow_points;
-                count.leaks += lit ? 1 : 0;
-            }
-        }
-    return count;
-}
-
-const auto robust = [](const rt::accelerator& accel, const rt::hit_record& hit, const rt::light_sample& sample) {
-    return rt::light_visible(accel, hit, sample);
-};
-const auto fixed_epsilon = [](const rt::accelerator& accel, const rt::hit_record& hit,
-                              const rt::light_sample& sample) {
-    return rt::light_visible_fixed_epsilon(accel, hit, sample, rt::real(1e-4));
-};
+using rt_test::count_shadow_errors;
+using rt_test::fixed_epsilon_visible;
+using rt_test::robust_visible;
+using rt_test::shadow_count;
+using rt_test::shadow_scene;
 
 } // namespace
 
 TEST_CASE("a sphere over a plane: inside the analytic shadow disc is shadowed, outside is lit")
 {
-    const shadow_scene q = make_scene(1, rt::vec3(0));
-    const shadow_count c = count_errors(q, robust);
-    CHECK(c.lit_points > 3000);
-    CHECK(c.shadow_points > 20); // most of the disc hides behind the ball
-    CHECK(c.acne == 0);
-    CHECK(c.leaks == 0);
+    const shadow_scene q = rt_test::make_shadow_scene(1, rt::vec3(0));
+    const shadow_count c = count_shadow_errors(q, robust_visible);
+    INFO("a 73 x 73 grid of points on the plane, " << c.lit_points << " outside the shadow disc of radius "
+         << q.shadow_radius << " (plus one grid step), " << c.shadow_points << " inside it");
+    REQUIRE_MESSAGE(c.lit_points > 3000, "expected more than 3000 plane points outside the shadow (the scene's geometry)");
+    CHECK_MESSAGE(c.acne == 0, "expected every point outside the shadow to see the light, " << c.acne
+                                   << " did not: shadow acne, the shadow ray hits the surface it leaves (start it "
+                                      "off the surface: spawn_ray_to)");
+    CHECK_MESSAGE(c.leaks == 0, "expected every point inside the shadow to be blocked by the ball, " << c.leaks
+                                    << " saw the light (is the shadow ray bounded by the light, and aimed at it?)");
+    CHECK_MESSAGE(c.shadow_points > 20, "expected more than 20 plane points inside the shadow (most hide behind the ball)");
 }
 
 TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor leaks with the robust offset, acne with a fixed epsilon")
 {
-    struct setting {
-        double scale;
-        double offset;
-    };
-    std::vector<setting> settings;
-    for (double e = -3; e <= 5; ++e)
-        settings.push_back({std::pow(10.0, e), 0.0}); // the scene scaled about the origin
-    // a unit scene moved away from the origin; double needs larger offsets before
-    // a fixed epsilon fails (its hit points are 2^29 times finer)
-    const double largest_offset = sizeof(rt::real) == 4 ? 5 : 12;
-    for (double e = -3; e <= largest_offset; ++e)
-        settings.push_back({1.0, std::pow(10.0, e)});
     int fixed_acne_total = 0;
     std::string table = "scale     offset    lit  shadowed  robust-acne  robust-leaks  fixed-acne(1e-4)\n";
-    for (const setting& set : settings) {
-        const rt::vec3 origin = rt::real(set.offset) * rt::vec3(0.6f, -0.48f, 0.64f);
-        const shadow_scene q = make_scene(set.scale, origin);
-        const shadow_count r = count_errors(q, robust);
-        const shadow_count f = count_errors(q, fixed_epsilon);
+    for (const rt_test::acne_setting& set : rt_test::acne_settings()) {
+        const shadow_scene q = set.scene();
+        const shadow_count r = count_shadow_errors(q, robust_visible);
+        const shadow_count f = count_shadow_errors(q, fixed_epsilon_visible);
         char line[128];
-        std::snprintf(line, sizeof line, "%-9.0e %-9.0e %5d %9d %12d %13d %17d\n", set.scale, set.offset,
+        std::snprintf(line, sizeof line, "%-9.0e %-9.0e %5d %9d %12d %13d %17d\n", set.scale(), set.offset(),
                       r.lit_points, r.shadow_points, r.acne, r.leaks, f.acne);
         table += line;
-        CAPTURE(set.scale);
-        CAPTURE(set.offset);
-        CHECK(r.lit_points > 3000);
-        CHECK(r.acne == 0);
-        CHECK(r.shadow_points > 20);
-        CHECK(r.leaks == 0); // and no light leaks through the ball: the offset is not too large either
+        CAPTURE(set.scale());
+        CAPTURE(set.offset());
+        REQUIRE_MESSAGE(r.lit_points > 3000, "expected more than 3000 plane points outside the shadow (the scene's geometry)");
+        CHECK_MESSAGE(r.acne == 0, "expected no acne: " << r.acne << " points outside the shadow did not see the light "
+                                   "(the shadow ray's start must move with the hit point's rounding error: spawn_ray_to)");
+        CHECK_MESSAGE(r.shadow_points > 20, "expected more than 20 plane points inside the shadow");
+        CHECK_MESSAGE(r.leaks == 0, "expected no leaks: " << r.leaks << " points inside the shadow saw the light "
+                                    "(the offset must not carry the shadow ray past the ball)");
         fixed_acne_total += f.acne;
     }
     MESSAGE(table);
-    CHECK(fixed_acne_total > 0); // the textbook's fixed epsilon fails somewhere
+    CHECK_MESSAGE(fixed_acne_total > 0, "expected the textbook's fixed epsilon (1e-4) to show acne at some scale or offset "
+                                        "(a property of light_visible_fixed_epsilon, not of your code)");
 }
 
 TEST_CASE("only occluders between the point and the light cast shadows")
@@ -181,18 +90,24 @@ TEST_CASE("only occluders between the point and the light cast shadows")
     bulb.position = {0, 4, 0};
     const rt::accelerator accel(s);
     rt::hit_record hit;
-    REQUIRE(accel.closest_hit(rt::ray{rt::vec3(0.2f, 3, 0.2f), rt::vec3(0, -1, 0)}, 0, 100, hit));
-    CHECK(rt::light_visible(accel, hit, rt::sample_light(bulb, hit.point)));
+    REQUIRE_MESSAGE(accel.closest_hit(rt::ray{rt::vec3(0.2f, 3, 0.2f), rt::vec3(0, -1, 0)}, 0, 100, hit),
+                    "expected the ray straight down to hit the floor (the library's accelerator)");
+    CHECK_MESSAGE(rt::light_visible(accel, hit, rt::sample_light(bulb, hit.point)),
+                  "expected the point light at (0, 4, 0) visible from the floor: the sphere at height 6 is beyond "
+                  "the light (bound the shadow ray at the light: t < 1 - shadow_epsilon on the segment)");
     // a directional light straight down is blocked by the same sphere (it is infinitely far)
     rt::light sun;
     sun.kind = rt::light_kind::directional;
     sun.direction = {0, -1, 0};
-    CHECK_FALSE(rt::light_visible(accel, hit, rt::sample_light(sun, hit.point)));
+    CHECK_FALSE_MESSAGE(rt::light_visible(accel, hit, rt::sample_light(sun, hit.point)),
+                        "expected a directional light straight down blocked by the sphere above: a directional "
+                        "light is infinitely far, so its shadow ray is unbounded");
     // and a sphere between the floor and the point light blocks it
     rt::sphere between;
     between.center = {0.2f, 2, 0.2f};
     between.radius = 0.3f;
     s.shapes.emplace_back(between);
     const rt::accelerator accel2(s);
-    CHECK_FALSE(rt::light_visible(accel2, hit, rt::sample_light(bulb, hit.point)));
+    CHECK_FALSE_MESSAGE(rt::light_visible(accel2, hit, rt::sample_light(bulb, hit.point)),
+                        "expected the point light blocked by the sphere between the floor and the light");
 }

@@ -18,6 +18,8 @@ namespace {
 
 void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
+    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+                                << rt_doctest::text(got));
     CHECK(got.r == doctest::Approx(r).epsilon(eps));
     CHECK(got.g == doctest::Approx(g).epsilon(eps));
     CHECK(got.b == doctest::Approx(b).epsilon(eps));
@@ -56,6 +58,9 @@ TEST_CASE("reflect: same length, angle in equals angle out, twice is the identit
     const rt::vec3 ds[] = {{1, 0, 0}, {-0.3f, -2, 1}, {0, 0, 5}, {2, 4, -1}};
     for (const rt::vec3& d : ds) {
         const rt::vec3 r = rt::reflect(d, n);
+        INFO("reflect(" << rt_doctest::text(d) << ", n = " << rt_doctest::text(n) << ") = " << rt_doctest::text(r)
+             << ": expected r = d - 2 (d.n) n (FCG 4th ed., sec. 4.8), the same length as d, its normal part "
+                "flipped, its tangential part kept, and reflect(r, n) = d");
         CHECK(glm::length(r) == doctest::Approx(glm::length(d)));
         CHECK(glm::dot(r, n) == doctest::Approx(-glm::dot(d, n)));
         // the tangential part is kept
@@ -66,6 +71,7 @@ TEST_CASE("reflect: same length, angle in equals angle out, twice is the identit
     }
     // straight down onto a floor comes straight back up
     const rt::vec3 up = rt::reflect({0, -3, 0}, {0, 1, 0});
+    INFO("straight down onto a floor, (0, -3, 0) with n = (0, 1, 0): expected (0, 3, 0), found " << rt_doctest::text(up));
     CHECK(up.x == doctest::Approx(0));
     CHECK(up.y == doctest::Approx(3));
 }
@@ -209,5 +215,6 @@ TEST_CASE("a mirror ball far from the origin reflects only the sky: no speckles 
                                             "surface (rt::spawn_ray or rt::offset_ray_origin), not at the hit point");
         speckles_total += speckles;
     }
-    CHECK(speckles_total == 0);
+    CHECK_MESSAGE(speckles_total == 0, "expected no speckles at any scale, found " << speckles_total
+                                                                                  << " over the three scales");
 }

@@ -87,6 +87,7 @@ bool identical(const rt::image& a, const rt::image& b)
 
 TEST_CASE("clamp tone map: identity on [0, 1], 0 below, 1 above, NaN to 0")
 {
+    INFO("expected T(x) = x on [0, 1], 1 above (inf too), 0 below and for NaN (write !(x > 0) to catch NaN)");
     CHECK(rt::tonemap_clamp(0.0f) == 0.0f);
     CHECK(rt::tonemap_clamp(0.25f) == 0.25f);
     CHECK(rt::tonemap_clamp(1.0f) == 1.0f);
@@ -98,11 +99,14 @@ TEST_CASE("clamp tone map: identity on [0, 1], 0 below, 1 above, NaN to 0")
 
 TEST_CASE("Reinhard tone map x / (1 + x) at known points")
 {
-    CHECK(rt::tonemap_reinhard(0.0f) == 0.0f);
-    CHECK(rt::tonemap_reinhard(1.0f) == doctest::Approx(0.5));  // 1 / 2
-    CHECK(rt::tonemap_reinhard(3.0f) == doctest::Approx(0.75)); // 3 / 4
-    CHECK(rt::tonemap_reinhard(0.25f) == doctest::Approx(0.2)); // (1/4) / (5/4)
-    CHECK(rt::tonemap_reinhard(99.0f) == doctest::Approx(0.99));
+    {
+        INFO("expected T(x) = x / (1 + x): T(0) = 0, T(1) = 1/2, T(3) = 3/4, T(1/4) = 1/5, T(99) = 0.99");
+        CHECK(rt::tonemap_reinhard(0.0f) == 0.0f);
+        CHECK(rt::tonemap_reinhard(1.0f) == doctest::Approx(0.5));  // 1 / 2
+        CHECK(rt::tonemap_reinhard(3.0f) == doctest::Approx(0.75)); // 3 / 4
+        CHECK(rt::tonemap_reinhard(0.25f) == doctest::Approx(0.2)); // (1/4) / (5/4)
+        CHECK(rt::tonemap_reinhard(99.0f) == doctest::Approx(0.99));
+    }
     CHECK_MESSAGE(rt::tonemap_reinhard(std::numeric_limits<float>::infinity()) == 1.0f,
                   "expected T(inf) = 1, the limit of x / (1 + x); computed as written, inf / inf is NaN (a black pixel): "
                   "return 1 for an infinite x");
@@ -112,8 +116,9 @@ TEST_CASE("Reinhard tone map x / (1 + x) at known points")
     float previous = 0;
     for (float x = 0.01f; x < 1000; x *= 1.1f) {
         const float t = rt::tonemap_reinhard(x);
-        CHECK(t > previous);
-        CHECK(t < 1.0f);
+        CAPTURE(x);
+        REQUIRE_MESSAGE(t > previous, "expected T increasing: T(x) = " << t << " after " << previous);
+        REQUIRE_MESSAGE(t < 1.0f, "expected T(x) < 1 for every finite x, found " << t);
         previous = t;
     }
 }
@@ -123,14 +128,19 @@ TEST_CASE("the naive x / (1 + x) turns an infinite sample into a black pixel, th
     // a single overflowing sample (inf radiance) must come out white, not black
     const float inf = std::numeric_limits<float>::infinity();
     const float naive = inf / (1.0f + inf);
-    CHECK(std::isnan(naive));                    // inf / inf
-    CHECK(int(rt::quantize(rt::srgb_encode(naive))) == 0);           // NaN is stored as 0: black
-    CHECK(int(rt::quantize(rt::srgb_encode(rt::tonemap_reinhard(inf)))) == 255); // the limit 1: white
+    CHECK_MESSAGE(std::isnan(naive), "expected inf / (1 + inf) = inf / inf to be NaN (IEEE 754)");
+    CHECK_MESSAGE(int(rt::quantize(rt::srgb_encode(naive))) == 0,
+                  "expected a NaN sample stored as 0, a black pixel (srgb_encode and quantize send NaN to 0)");
+    CHECK_MESSAGE(int(rt::quantize(rt::srgb_encode(rt::tonemap_reinhard(inf)))) == 255,
+                  "expected an infinite sample stored as 255, white: tonemap_reinhard(inf) must be the limit 1, "
+                  "not inf / inf = NaN (found tonemap_reinhard(inf) = " << rt::tonemap_reinhard(inf) << ")");
 }
 
 TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays there")
 {
     // T(x) = x(2.51 x + 0.03) / (x(2.43 x + 0.59) + 0.14)
+    INFO("expected Narkowicz's fit T(x) = x(2.51 x + 0.03) / (x(2.43 x + 0.59) + 0.14), clamped to [0, 1]: T(0) = 0, "
+         "T(1) = 2.54 / 3.16, 1 from x = 7.2417 on (inf too), 0 for x < 0 and NaN, increasing below 7.24");
     CHECK(rt::tonemap_aces(0.0f) == 0.0f);
     CHECK(rt::tonemap_aces(1.0f) == doctest::Approx(2.54 / 3.16)); // 0.8038: "1 maps to about 0.8"
     // T(x) = 1 where 0.08 x^2 - 0.56 x - 0.14 = 0: x = (0.56 + sqrt(0.56^2 + 4 * 0.08 * 0.14)) / 0.16
@@ -145,13 +155,16 @@ TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays 
     float previous = 0;
     for (float x = 0.01f; x < 7.0f; x += 0.01f) {
         const float t = rt::tonemap_aces(x);
-        CHECK(t > previous);
+        CAPTURE(x);
+        REQUIRE(t > previous);
         previous = t;
     }
 }
 
 TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
 {
+    INFO("expected V = 12.92 x for x <= 0.0031308, else 1.055 x^(1/2.4) - 0.055 (IEC 61966-2-1), increasing, with "
+         "srgb_decode its inverse");
     CHECK(rt::srgb_encode(0.0f) == 0.0f);
     CHECK(rt::srgb_encode(1.0f) == doctest::Approx(1.0).epsilon(1e-6)); // 1.055 - 0.055
     // 1.055 * 0.5^(1/2.4) - 0.055
@@ -171,8 +184,9 @@ TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
     for (int k = 0; k <= 1000; ++k) {
         const float x = float(k) / 1000;
         const float v = rt::srgb_encode(x);
-        CHECK(v > previous);
-        CHECK(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3));
+        CAPTURE(x);
+        REQUIRE(v > previous);
+        REQUIRE(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3));
         previous = v;
     }
     // the decode side's own known point: v = 0.04045 is x = 0.04045 / 12.92
@@ -183,6 +197,8 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
 {
     // by hand: x = 0.001 gives sRGB 12.92 x = 0.01292 -> byte 3, but
     // 0.001^(1/2.2) = 0.0433 -> byte 11; at mid-grey 0.18 the two are 118 and 117
+    INFO("by hand: x = 0.001 is byte 3 in sRGB (12.92 x = 0.01292) and 11 with gamma 2.2 (x^(1/2.2) = 0.0433); "
+         "x = 0.18 is 118 and 117");
     CHECK(int(rt::quantize(rt::srgb_encode(0.001f))) == 3);
     CHECK(int(rt::quantize(rt::gamma_encode(0.001f, 2.2f))) == 11);
     CHECK(int(rt::quantize(rt::srgb_encode(0.18f))) == 118);
@@ -201,6 +217,8 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
             worst_above_tenth = std::max(worst_above_tenth, d);
     }
     CAPTURE(worst_x);
+    INFO("expected the two encodings at most 9 byte levels apart, that worst near x = 0.0013 (sRGB's linear "
+         "segment), and at most 2 apart above x = 0.1; found " << worst << " and " << worst_above_tenth);
     CHECK(worst == 9);           // near x = 0.0013, where sRGB is still on its linear segment
     CHECK(worst_x < 0.003f);
     CHECK(worst_above_tenth <= 2);
@@ -208,12 +226,14 @@ TEST_CASE("a plain gamma 2.2 is not sRGB: up to 9 byte levels apart in the shado
 
 TEST_CASE("quantise: every level k/255 comes back as k, halves round up, the rest clamps")
 {
+    INFO("expected byte = round(255 clamp(v, 0, 1)), halves up: k / 255 gives k, (k + 0.49) / 255 gives k, "
+         "(k + 0.51) / 255 gives k + 1; below 0 and NaN give 0, above 1 and inf give 255");
     for (int k = 0; k <= 255; ++k) {
         CAPTURE(k);
-        CHECK(int(rt::quantize(float(k) / 255)) == k);
+        REQUIRE(int(rt::quantize(float(k) / 255)) == k);
         if (k < 255) {
-            CHECK(int(rt::quantize((float(k) + 0.49f) / 255)) == k);
-            CHECK(int(rt::quantize((float(k) + 0.51f) / 255)) == k + 1);
+            REQUIRE(int(rt::quantize((float(k) + 0.49f) / 255)) == k);
+            REQUIRE(int(rt::quantize((float(k) + 0.51f) / 255)) == k + 1);
         }
     }
     CHECK(int(rt::quantize(0.5f)) == 128); // 127.5 rounds up
@@ -230,6 +250,8 @@ TEST_CASE("the pipeline runs exposure, tone map, transfer, quantisation in that 
     enc.tonemap = rt::tonemap_kind::reinhard;
     enc.transfer = rt::transfer_kind::srgb;
     // 0.5 * 2^1 = 1 -> Reinhard 1/2 -> sRGB 0.7353570 -> 255 * 0.7353570 = 187.52 -> 188
+    INFO("expected exposure first (x 2^exposure), then the tone map, then the transfer curve, then quantisation: "
+         "0.5 at exposure 1 is 1, Reinhard 1/2, sRGB 0.7353570, byte 188; 0 stays 0; 1e9 is byte 255");
     CHECK(rt::encode_channel(0.5f, enc) == doctest::Approx(0.7353570).epsilon(1e-6));
     const auto bytes = rt::encode_color(rt::color(0.5f, 0.0f, 1e9f), enc);
     CHECK(int(bytes[0]) == 188);
@@ -311,6 +333,8 @@ TEST_CASE("save_image with an encoding: .ppm holds the pipeline's bytes, .png is
     const std::string ppm = read_all(folder.path / "a.ppm");
     const std::vector<std::uint8_t> expected = rt::encode_image(img, enc);
     const std::string header = "P6\n3 1\n255\n";
+    INFO("expected the .ppm to hold the header '" << "P6 3 1 255" << "' then exactly encode_image's bytes, the .png "
+         "to start with the PNG signature, and the .pfm to hold the linear floats unchanged (no exposure, no tone map)");
     REQUIRE(ppm.size() == header.size() + expected.size());
     CHECK(std::equal(expected.begin(), expected.end(), ppm.begin() + std::ptrdiff_t(header.size()),
                      [](std::uint8_t a, char b) { return a == std::uint8_t(b); }));
