@@ -21,6 +21,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <variant>
@@ -176,49 +177,45 @@ int main(int argc, char** argv)
 {
     return stage::run("stage04_triangle", [&] {
         stage::arguments args(argc, argv);
-        std::string input, output = "triangle.png", mode = "normals", accel = "groups";
+        std::string output = "triangle.png", mode = "normals", accel = "groups";
         int width = 0, height = 0;
         bool compare = false, strict = false;
         stage::pixel_request pixel;
-        while (!args.done()) {
-            const std::string arg = args.take();
-            if (arg == "--help" || arg == "-h") {
-                std::cout << usage;
-                return 0;
-            } else if (arg == "-o") {
-                output = args.value_of("-o");
-            } else if (arg == "--mode") {
-                mode = args.value_of("--mode");
-                if (mode != "normals" && mode != "geometric" && mode != "depth")
-                    throw rt::error("--mode: expected normals, geometric or depth, found '" + mode + "'");
-            } else if (arg == "--size") {
-                const std::string size = args.value_of("--size");
-                const std::size_t x = size.find('x');
-                if (x == std::string::npos)
-                    throw rt::error("--size: expected WxH such as 800x600, found '" + size + "'");
-                width = parse_int(size.substr(0, x), "--size width", 1, 16384);
-                height = parse_int(size.substr(x + 1), "--size height", 1, 16384);
-            } else if (arg == "--accel") {
-                accel = args.value_of("--accel");
-                if (accel != "list" && accel != "groups")
-                    rt::parse_accelerator_kind(accel); // an rt::error naming the choices
-            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
-                strict = true;
-            } else if (arg == "--compare") {
-                compare = true;
-            } else if (arg == "--pixel" || arg == "--pixel-json") {
-                stage::read_pixel(args, arg, pixel);
-            } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --mode, --size, --accel, --compare, --pixel, --pixel-json, "
-                                "--strict, --help), found '" + arg + "'; see --help");
-            } else if (input.empty()) {
-                input = arg;
-            } else {
-                throw rt::error("expected one input file, found also '" + arg + "'; see --help");
-            }
-        }
-        if (input.empty())
-            throw rt::error("expected an OBJ or scene file, found none; see --help");
+        const std::optional<std::string> input_file = stage::read_command_line(
+            args, usage, "-o, --mode, --size, --accel, --compare, --pixel, --pixel-json, --strict",
+            [&](const std::string& arg) {
+                if (arg == "-o") {
+                    output = args.value_of("-o");
+                } else if (arg == "--mode") {
+                    mode = args.value_of("--mode");
+                    if (mode != "normals" && mode != "geometric" && mode != "depth")
+                        throw rt::error("--mode: expected normals, geometric or depth, found '" + mode + "'");
+                } else if (arg == "--size") {
+                    const std::string size = args.value_of("--size");
+                    const std::size_t x = size.find('x');
+                    if (x == std::string::npos)
+                        throw rt::error("--size: expected WxH such as 800x600, found '" + size + "'");
+                    width = parse_int(size.substr(0, x), "--size width", 1, 16384);
+                    height = parse_int(size.substr(x + 1), "--size height", 1, 16384);
+                } else if (arg == "--accel") {
+                    accel = args.value_of("--accel");
+                    if (accel != "list" && accel != "groups")
+                        rt::parse_accelerator_kind(accel); // an rt::error naming the choices
+                } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                    strict = true;
+                } else if (arg == "--compare") {
+                    compare = true;
+                } else if (arg == "--pixel" || arg == "--pixel-json") {
+                    stage::read_pixel(args, arg, pixel);
+                } else {
+                    return false;
+                }
+                return true;
+            },
+            "an OBJ or scene file");
+        if (!input_file)
+            return 0; // --help
+        const std::string& input = *input_file;
         if (!pixel.wanted) {
             stage::check_image_output(output); // every option, the output format included, before any work
             stage::check_input_and_outputs(input, ends_with(input, ".scene") ? "a scene file" : "an OBJ file",

@@ -45,9 +45,10 @@ private:
 /// -h print `usage` and give nullopt (the program exits 0); an unknown option,
 /// a second file or no file at all is an rt::error naming what was expected,
 /// with `known` listing the options. Returns the scene file's path.
+/// `input` names the file in messages, with its article: "a scene file", "an OBJ or scene file".
 template <class Option>
 std::optional<std::string> read_command_line(arguments& args, const std::string& usage, const std::string& known,
-                                             Option&& option)
+                                             Option&& option, const std::string& input = "a scene file")
 {
     std::string scene_path;
     while (!args.done()) {
@@ -61,11 +62,12 @@ std::optional<std::string> read_command_line(arguments& args, const std::string&
         if (!arg.empty() && arg[0] == '-')
             throw rt::error("expected an option (" + known + ", --help), found '" + arg + "'; see --help");
         if (!scene_path.empty())
-            throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
+            throw rt::error("expected one " + input.substr(input.find(' ') + 1) + ", found also '" + arg +
+                            "'; see --help");
         scene_path = arg;
     }
     if (scene_path.empty())
-        throw rt::error("expected a scene file, found none; see --help");
+        throw rt::error("expected " + input + ", found none; see --help");
     return scene_path;
 }
 
