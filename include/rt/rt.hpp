@@ -23,6 +23,7 @@
 #include "progress.hpp"
 #include "random.hpp"
 #include "ray.hpp"
+#include "pixel_sampling.hpp"
 #include "ray_image.hpp"
 #include "raytracer.hpp"
 #include "render_setup.hpp"
