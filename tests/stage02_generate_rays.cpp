@@ -64,6 +64,8 @@ TEST_CASE("the frame is orthonormal and right-handed, with w pointing away from 
         const rt::vec3 back = glm::normalize(eyes[k] - targets[k]);
         check_near(f.w, back);
         // v leans towards up: up . v > 0, and up lies in the v-w plane
+        INFO("v must lean towards up (up . v > 0): u = up x w, then v = w x u; u = w x up flips u and v, a half turn "
+             "of the picture");
         CHECK(glm::dot(ups[k], f.v) > 0);
         CHECK(std::fabs(glm::dot(ups[k], f.u)) < tol);
     }
@@ -281,14 +283,12 @@ TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no c
 
 namespace {
 
-/// The cell (stratum) of a sample, column a and row b in 0 .. n - 1, worked
-/// out in double from the float position; -1 when the sample is outside the pixel.
+/// The cell (stratum) of a sample inside the pixel, column a or row b in
+/// 0 .. n - 1, worked out in double from the float position.
 int stratum_of(double position, int pixel, int n)
 {
     const double t = (position - pixel) * n; // in [0, n] inside the pixel
-    if (!(0 <= t && t <= n))
-        return -1;
-    return std::min(int(std::floor(t)), n - 1);
+    return std::max(0, std::min(int(std::floor(t)), n - 1));
 }
 
 /// The generator of one pixel for a seed, as the stage program makes it.
@@ -319,9 +319,11 @@ TEST_CASE("jittered samples: n x n of them, all inside the pixel, exactly one in
                     CAPTURE(p);
                     INFO("a sample must lie in the pixel's square [i, i + 1] x [j, j + 1] (film positions, "
                          "pixels from the bottom-left corner)");
+                    REQUIRE(p.x >= rt::real(i));
+                    REQUIRE(p.x <= rt::real(i + 1));
+                    REQUIRE(p.y >= rt::real(j));
+                    REQUIRE(p.y <= rt::real(j + 1));
                     const int a = stratum_of(p.x, i, n), b = stratum_of(p.y, j, n);
-                    REQUIRE(a >= 0);
-                    REQUIRE(b >= 0);
                     ++per_cell[std::size_t(b * n + a)];
                 }
                 for (int b = 0; b < n; ++b)
@@ -349,8 +351,11 @@ TEST_CASE("jittered samples: the same generator state gives the same samples, an
             INFO("draw every random number from the generator passed in (no rand(), no std::random_device, "
                  "no generator of your own): then the same seed gives the same samples");
             CHECK(a[k] == b[k]);
-            INFO("every sample is jittered: a fixed point in its cell (its centre, its corner) is the same for "
-                 "every seed");
+        }
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            CAPTURE(k);
+            INFO("every sample is jittered, x and y: a fixed point in its cell (its centre, its corner) is the same "
+                 "for every seed");
             CHECK(a[k].x != c[k].x);
             CHECK(a[k].y != c[k].y);
         }
