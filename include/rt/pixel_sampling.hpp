@@ -41,6 +41,8 @@ namespace rt {
 inline std::vector<vec2> jittered_samples(int i, int j, int n, pcg32& rng)
 {
     // RT_EXERCISE_BEGIN(stage02: jittered samples in a pixel)
+    // Hint: loop over the cells (a, b); draw xi1 and xi2 with rng.next_float(),
+    //   one draw per statement, and place the sample by the formula at the top of this file.
     std::vector<vec2> positions;
     positions.reserve(std::size_t(n) * std::size_t(n));
     for (int b = 0; b < n; ++b)
@@ -60,6 +62,8 @@ inline std::vector<vec2> jittered_samples(int i, int j, int n, pcg32& rng)
 inline color box_reconstruct(int i, int j, const std::vector<vec2>& positions, const std::vector<color>& values)
 {
     // RT_EXERCISE_BEGIN(stage02: box reconstruction of a pixel)
+    // Hint: sum the values of the samples inside and count them; mind a pixel
+    //   with none inside.
     color sum(0);
     int inside = 0;
     for (std::size_t k = 0; k < positions.size(); ++k) {
