@@ -58,6 +58,8 @@ def save(fig, charts, name):
 
 SAMPLER_COLOURS = {"center": "0.4", "grid": "tab:purple", "random": "tab:red", "jittered": "tab:blue",
                    "halton": "tab:green"}
+# the stage-02 exercises (jittered samples, box), box filter only: drawn on the sampling charts, not the headline
+STUDENT_COLOUR = {"student": "tab:cyan"}
 
 
 def plot_sampling(data, charts):
@@ -73,7 +75,7 @@ def plot_sampling(data, charts):
     for scene in sorted({r["scene"] for r in rows}):
         fig, axes = plt.subplots(2, 2, figsize=(10, 8), sharex=True, sharey=True)
         for ax, filt in zip(axes.flat, ["box", "tent", "gaussian", "mitchell"]):
-            for sampler, colour in SAMPLER_COLOURS.items():
+            for sampler, colour in {**SAMPLER_COLOURS, **STUDENT_COLOUR}.items():
                 pts = [(num(r["seconds"]), num(r["rmse"]), int(r["spp"])) for r in rows
                        if r["scene"] == scene and r["filter"] == filt and r["sampler"] == sampler]
                 if not pts:
@@ -458,13 +460,14 @@ def write_tables(data, charts):
     slopes_path = os.path.join(data, "sampling_slopes.csv")
     if os.path.exists(slopes_path):
         _, rows = read(slopes_path)
-        out.append("| scene | filter | grid | random (theory -0.5) | jittered (theory -0.75) | halton |")
-        out.append("|---|---|---:|---:|---:|---:|")
+        out.append("| scene | filter | grid | random (theory -0.5) | jittered (theory -0.75) | halton "
+                   "| student, stage 02 (box only) |")
+        out.append("|---|---|---:|---:|---:|---:|---:|")
         for scene in dict.fromkeys(r["scene"] for r in rows):
             for filt in ("box", "tent", "gaussian", "mitchell"):
                 get = {r["sampler"]: num(r["slope"]) for r in rows if r["scene"] == scene and r["filter"] == filt}
                 out.append("| %s | %s | %s |" % (scene, filt, " | ".join(
-                    "%.2f" % get[s] if s in get else "-" for s in ("grid", "random", "jittered", "halton"))))
+                    "%.2f" % get[s] if s in get else "-" for s in ("grid", "random", "jittered", "halton", "student"))))
         out.append("")
     if out:
         path = os.path.join(charts, "tables.md")

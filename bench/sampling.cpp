@@ -13,6 +13,13 @@
 // the variance of a stratified estimate of a pixel crossed by an edge falls as
 // N^-3/2).
 //
+// One more curve, box filter only: "student", the stage-02 exercises
+// (rt::jittered_samples with n x n = spp samples per pixel, rt::box_reconstruct;
+// include/rt/pixel_sampling.hpp), in a plain loop over the pixels on one
+// thread. It estimates what the library's jittered sampler with the box filter
+// estimates, so its curve should lie on that one, slope -3/4. (Benchmarks are
+// built from the reference solution only; a student kit has none.)
+//
 // Scenes:
 //   edges     an analytic pattern seen by an orthographic camera: a checkerboard
 //             rotated by 20 degrees and a disc, every pixel's value a step
@@ -26,6 +33,8 @@
 
 #include <rt/camera.hpp>
 #include <rt/filter.hpp>
+#include <rt/pixel_sampling.hpp>
+#include <rt/random.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
@@ -103,6 +112,24 @@ rt::render_result render_case(const scene_case& sc, rt::sampler_kind sampler, rt
     o.seed = seed;
     return rt::render(o, [&](real x, real y) { return sc.ray_at(x, y); },
                       [&](const rt::ray& r, rt::sample_context&) { return sc.radiance(r); });
+}
+
+/// The stage-02 exercises as a renderer: n x n jittered samples per pixel, the box.
+rt::image render_student(const scene_case& sc, int n, std::uint64_t seed)
+{
+    rt::image img(sc.width, sc.height);
+    std::vector<rt::color> values;
+    for (int j = 0; j < sc.height; ++j)
+        for (int i = 0; i < sc.width; ++i) {
+            const std::uint64_t pixel_index = std::uint64_t(j) * std::uint64_t(sc.width) + std::uint64_t(i);
+            rt::pcg32 rng = rt::seeded_generator(seed, pixel_index, 0, rt::sampler_stream);
+            const std::vector<rt::vec2> positions = rt::jittered_samples(i, j, n, rng);
+            values.clear();
+            for (const rt::vec2& p : positions)
+                values.push_back(sc.radiance(sc.ray_at(p.x, p.y)));
+            img.at(i, sc.height - 1 - j) = rt::box_reconstruct(i, j, positions, values); // top row first
+        }
+    return img;
 }
 
 } // namespace
@@ -197,6 +224,26 @@ int main(int argc, char** argv)
                         slopes.row() << sc.name << rt::name_of(sampler) << rt::name_of(filter) << slope << theory;
                         std::cout << "  " << rt::name_of(sampler) << ": slope " << slope << '\n';
                     }
+                }
+                if (filter == rt::filter_kind::box) { // the student's sampler and box (stage 02)
+                    std::vector<double> xs, ys;
+                    for (const int spp : spps) {
+                        int n = 1;
+                        while (n * n < spp)
+                            ++n;
+                        rt::image result;
+                        const double seconds = bench::best_time(repeats, [&] { result = render_student(sc, n, 1); });
+                        const double error = rmse(result, reference);
+                        table.row() << sc.name << sc.width << sc.height << "student" << rt::name_of(filter) << spp
+                                    << n * n << seconds << error << reference_spps[c];
+                        if (spp >= 4) {
+                            xs.push_back(double(n * n));
+                            ys.push_back(error);
+                        }
+                    }
+                    const double slope = log_slope(xs, ys);
+                    slopes.row() << sc.name << "student" << rt::name_of(filter) << slope << "-0.75";
+                    std::cout << "  student (stage 02): slope " << slope << '\n';
                 }
             }
         }

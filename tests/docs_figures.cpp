@@ -54,6 +54,7 @@
 #include <rt/sphere_stable.hpp>
 #include <rt/transfer.hpp>
 
+#include "../stages/02_generate_rays/edge.hpp"
 #include "reintersect.hpp"
 #include "shadow_acne.hpp"
 #include "slab_cases.hpp"
@@ -78,6 +79,21 @@ std::string showcase_ray_image_centre(const fs::path& root)
     const rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
     const rt::image img = rt::render_ray_directions(rt::make_ray_generator(s.cam, s.width, s.height));
     return bytes_text(img.at(s.width / 2, s.height / 2), 1.0f);
+}
+
+/// A line stage02_generate_rays prints, formatted as it formats it.
+std::string printed(const char* format, double a, double b = 0, double c = 0, double d = 0)
+{
+    char text[200];
+    std::snprintf(text, sizeof text, format, a, b, c, d);
+    return text;
+}
+
+/// The generator of the showcase scene's camera, as the stage-02 program makes it.
+rt::ray_generator showcase_generator(const fs::path& root)
+{
+    const rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
+    return rt::make_ray_generator(s.cam, s.width, s.height);
 }
 
 /// The count stage03_sphere prints, "N of M rays hit": one ray per pixel,
@@ -434,6 +450,32 @@ std::map<std::string, figure_function> figures(const fs::path& root)
 {
     std::map<std::string, figure_function> all;
     all["stage02.showcase_centre_bytes"] = [root] { return showcase_ray_image_centre(root); };
+    // what stage02_generate_rays prints for scenes/showcase.scene (its "%g" lines)
+    all["stage02.showcase.v"] = [root] {
+        const rt::frame f = showcase_generator(root).basis;
+        return printed("%g %g %g", double(f.v.x), double(f.v.y), double(f.v.z));
+    };
+    all["stage02.showcase.w"] = [root] {
+        const rt::frame f = showcase_generator(root).basis;
+        return printed("%g %g %g", double(f.w.x), double(f.w.y), double(f.w.z));
+    };
+    all["stage02.showcase.window"] = [root] {
+        const rt::window w = showcase_generator(root).plane;
+        return printed("l %g r %g b %g t %g", double(w.l), double(w.r), double(w.b), double(w.t));
+    };
+    // and with --edge (stages/02_generate_rays/edge.hpp), which needs the sampling exercises
+    all["stage02.edge.pixels"] = [root] {
+        return std::to_string(stage::render_edge(showcase_generator(root)).edge_pixels);
+    };
+    all["stage02.edge.rms_centre.float"] = [root] {
+        return printed("%.4f", stage::render_edge(showcase_generator(root)).rms_centre);
+    };
+    all["stage02.edge.rms_one.float"] = [root] {
+        return printed("%.4f", stage::render_edge(showcase_generator(root)).rms_one);
+    };
+    all["stage02.edge.rms_sixteen.float"] = [root] {
+        return printed("%.4f", stage::render_edge(showcase_generator(root)).rms_sixteen);
+    };
     const fs::path far = root / "scenes" / "far-spheres.scene";
     for (const char* precision : {"float", "double"}) {
         const std::string p = precision;

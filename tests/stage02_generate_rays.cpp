@@ -5,13 +5,17 @@
 // built here, not loaded, so a stage-01 bug cannot fail these cases.
 #include "rt_doctest.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <rt/camera.hpp>
 #include <rt/image_io.hpp>
+#include <rt/pixel_sampling.hpp>
+#include <rt/random.hpp>
 #include <rt/ray_image.hpp>
 
 namespace {
@@ -64,6 +68,8 @@ TEST_CASE("the frame is orthonormal and right-handed, with w pointing away from 
         const rt::vec3 back = glm::normalize(eyes[k] - targets[k]);
         check_near(f.w, back);
         // v leans towards up: up . v > 0, and up lies in the v-w plane
+        INFO("v must lean towards up (up . v > 0): u = up x w, then v = w x u; u = w x up flips u and v, a half turn "
+             "of the picture");
         CHECK(glm::dot(ups[k], f.v) > 0);
         CHECK(std::fabs(glm::dot(ups[k], f.u)) < tol);
     }
@@ -316,4 +322,233 @@ TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no c
     // orthographic (FCG 4.3.1): origin e + u U + v V, direction -w
     CHECK(o.origin == rt::vec3(1, 3.5f, 3.5f));
     CHECK(o.direction == rt::vec3(-1, 0, 0));
+}
+
+// ---- sampling: several rays per pixel (include/rt/pixel_sampling.hpp) ----
+// Pixel (i, j) is the square [i, i + 1] x [j, j + 1] of film positions; n x n
+// jittered samples put one uniform point in each of its n x n cells (FCG 4th
+// ed., sec. 13.4.1); the box reconstruction averages the samples inside it.
+
+namespace {
+
+/// The cell (stratum) of a sample inside the pixel, column a or row b in
+/// 0 .. n - 1, worked out in double from the float position.
+int stratum_of(double position, int pixel, int n)
+{
+    const double t = (position - pixel) * n; // in [0, n] inside the pixel
+    return std::max(0, std::min(int(std::floor(t)), n - 1));
+}
+
+/// The generator of one pixel for a seed, as the stage program makes it.
+rt::pcg32 generator_for(std::uint64_t seed, int i, int j)
+{
+    return rt::seeded_generator(seed, std::uint64_t(j) * 1000 + std::uint64_t(i), 0, 1);
+}
+
+} // namespace
+
+TEST_CASE("jittered samples: n x n of them, all inside the pixel, exactly one in each cell")
+{
+    const int pixels[][2] = {{0, 0}, {3, 5}, {17, 2}, {63, 40}};
+    for (const int n : {1, 2, 3, 4, 8})
+        for (const auto& pixel : pixels)
+            for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+                const int i = pixel[0], j = pixel[1];
+                rt::pcg32 rng = generator_for(seed, i, j);
+                const std::vector<rt::vec2> samples = rt::jittered_samples(i, j, n, rng);
+                CAPTURE(n);
+                CAPTURE(i);
+                CAPTURE(j);
+                CAPTURE(seed);
+                INFO("n x n samples, one per cell: the cell (a, b) holds (i + (a + xi1) / n, j + (b + xi2) / n)");
+                REQUIRE(samples.size() == std::size_t(n) * std::size_t(n));
+                std::vector<int> per_cell(std::size_t(n) * std::size_t(n), 0);
+                for (const rt::vec2& p : samples) {
+                    CAPTURE(p);
+                    INFO("a sample must lie in the pixel's square [i, i + 1] x [j, j + 1] (film positions, "
+                         "pixels from the bottom-left corner)");
+                    REQUIRE(p.x >= rt::real(i));
+                    REQUIRE(p.x <= rt::real(i + 1));
+                    REQUIRE(p.y >= rt::real(j));
+                    REQUIRE(p.y <= rt::real(j + 1));
+                    const int a = stratum_of(p.x, i, n), b = stratum_of(p.y, j, n);
+                    ++per_cell[std::size_t(b * n + a)];
+                }
+                for (int b = 0; b < n; ++b)
+                    for (int a = 0; a < n; ++a) {
+                        CAPTURE(a);
+                        CAPTURE(b);
+                        INFO("each of the n x n cells of the pixel holds exactly one sample");
+                        CHECK(per_cell[std::size_t(b * n + a)] == 1);
+                    }
+            }
+}
+
+TEST_CASE("jittered samples: the same generator state gives the same samples, another seed other samples")
+{
+    for (const int n : {1, 4}) {
+        CAPTURE(n);
+        rt::pcg32 first = generator_for(7, 2, 3), again = generator_for(7, 2, 3), other = generator_for(8, 2, 3);
+        const std::vector<rt::vec2> a = rt::jittered_samples(2, 3, n, first);
+        const std::vector<rt::vec2> b = rt::jittered_samples(2, 3, n, again);
+        const std::vector<rt::vec2> c = rt::jittered_samples(2, 3, n, other);
+        REQUIRE(a.size() == b.size());
+        REQUIRE(a.size() == c.size());
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            CAPTURE(k);
+            INFO("draw every random number from the generator passed in (no rand(), no std::random_device, "
+                 "no generator of your own): then the same seed gives the same samples");
+            CHECK(a[k] == b[k]);
+        }
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            CAPTURE(k);
+            INFO("every sample is jittered, x and y: a fixed point in its cell (its centre, its corner) is the same "
+                 "for every seed");
+            CHECK(a[k].x != c[k].x);
+            CHECK(a[k].y != c[k].y);
+        }
+    }
+}
+
+TEST_CASE("jittered samples are uniform in their cells: offsets spread over the whole cell, mean one half")
+{
+    // 64 pixels x 8 x 8 samples = 4096 offsets (a + xi) n - a = xi, uniform in [0, 1):
+    // mean 1/2 with standard deviation sqrt(1/12 / 4096) = 0.0045, so 0.02 is 4.4 deviations
+    const int n = 8;
+    double sum_x = 0, sum_y = 0, low_x = 1, high_x = 0, low_y = 1, high_y = 0;
+    int count = 0;
+    for (int pixel = 0; pixel < 64; ++pixel) {
+        const int i = pixel % 8, j = pixel / 8;
+        rt::pcg32 rng = generator_for(11, i, j);
+        for (const rt::vec2& p : rt::jittered_samples(i, j, n, rng)) {
+            const double tx = (p.x - i) * n, ty = (p.y - j) * n;
+            const double ox = tx - std::min(std::floor(tx), double(n - 1));
+            const double oy = ty - std::min(std::floor(ty), double(n - 1));
+            sum_x += ox;
+            sum_y += oy;
+            low_x = std::min(low_x, ox);
+            high_x = std::max(high_x, ox);
+            low_y = std::min(low_y, oy);
+            high_y = std::max(high_y, oy);
+            ++count;
+        }
+    }
+    REQUIRE(count == 4096);
+    INFO("xi1 and xi2 are uniform in [0, 1): use next_float() as it is, divided by n with the cell index");
+    CHECK(std::fabs(sum_x / count - 0.5) < 0.02);
+    CHECK(std::fabs(sum_y / count - 0.5) < 0.02);
+    CHECK(low_x < 0.05);
+    CHECK(high_x > 0.95);
+    CHECK(low_y < 0.05);
+    CHECK(high_y > 0.95);
+}
+
+TEST_CASE("box reconstruction: the average of a constant is that constant")
+{
+    rt::pcg32 rng(3, 4); // positions made here, not by the sampler: this case tests the reconstruction alone
+    for (const int count : {1, 3, 16, 100}) {
+        CAPTURE(count);
+        std::vector<rt::vec2> positions;
+        for (int k = 0; k < count; ++k) {
+            const rt::real x = rt::real(5) + rt::real(rng.next_float());
+            const rt::real y = rt::real(2) + rt::real(rng.next_float());
+            positions.emplace_back(x, y);
+        }
+        // dyadic values: every partial sum and the division by a power of two are exact
+        const rt::color exact(0.25f, 0.5f, 0.75f);
+        const std::vector<rt::color> same(positions.size(), exact);
+        const rt::color got = rt::box_reconstruct(5, 2, positions, same);
+        INFO("a pixel whose samples all have the same value has that value: divide the sum by the number of samples "
+             "inside the pixel");
+        CHECK(got.r == doctest::Approx(0.25).epsilon(1e-6));
+        CHECK(got.g == doctest::Approx(0.5).epsilon(1e-6));
+        CHECK(got.b == doctest::Approx(0.75).epsilon(1e-6));
+        const rt::color grey(0.1f, 0.7f, 0.3f);
+        const rt::color g = rt::box_reconstruct(5, 2, positions, std::vector<rt::color>(positions.size(), grey));
+        CHECK(g.r == doctest::Approx(0.1).epsilon(1e-5));
+        CHECK(g.g == doctest::Approx(0.7).epsilon(1e-5));
+        CHECK(g.b == doctest::Approx(0.3).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("box reconstruction of a linear ramp from samples symmetric about the centre is the ramp at the centre")
+{
+    // L(x, y) = (x / 8, y / 4, (x + y) / 16): the average of a linear function is
+    // the function at the average position, and these positions average to the centre.
+    auto ramp = [](const rt::vec2& p) { return rt::color(p.x / 8, p.y / 4, (p.x + p.y) / 16); };
+    const int i = 3, j = 6;
+    const rt::vec2 centre(3.5f, 6.5f);
+    const rt::color want = ramp(centre);
+    // the centres of the 4 x 4 cells
+    std::vector<rt::vec2> grid;
+    for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a)
+            grid.emplace_back(rt::real(i) + (rt::real(a) + rt::real(0.5)) / 4, rt::real(j) + (rt::real(b) + rt::real(0.5)) / 4);
+    // random points and their mirror images through the centre
+    rt::pcg32 rng(5, 6);
+    std::vector<rt::vec2> pairs;
+    for (int k = 0; k < 8; ++k) {
+        const rt::real ox = rt::real(rng.next_float()) - rt::real(0.5);
+        const rt::real oy = rt::real(rng.next_float()) - rt::real(0.5);
+        pairs.emplace_back(centre.x + ox, centre.y + oy);
+        pairs.emplace_back(centre.x - ox, centre.y - oy);
+    }
+    for (const auto* positions : {&grid, &pairs}) {
+        std::vector<rt::color> values;
+        for (const rt::vec2& p : *positions)
+            values.push_back(ramp(p));
+        const rt::color got = rt::box_reconstruct(i, j, *positions, values);
+        CAPTURE(got);
+        CAPTURE(want);
+        INFO("every sample inside the pixel counts once, with the same weight (the box filter)");
+        CHECK(got.r == doctest::Approx(want.r).epsilon(1e-5));
+        CHECK(got.g == doctest::Approx(want.g).epsilon(1e-5));
+        CHECK(got.b == doctest::Approx(want.b).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("box reconstruction: samples outside the pixel count for nothing, and no sample inside gives black")
+{
+    const int i = 4, j = 1;
+    std::vector<rt::vec2> positions = {{4.25f, 1.25f}, {4.75f, 1.75f}};
+    std::vector<rt::color> values = {rt::color(0.5f), rt::color(1)};
+    // the neighbours' samples, left, right, below, above and diagonal, with a value that would show
+    const rt::vec2 outside[] = {{3.5f, 1.5f}, {5.5f, 1.5f}, {4.5f, 0.5f}, {4.5f, 2.5f}, {5.25f, 2.25f}, {-4.5f, -1.5f}};
+    for (const rt::vec2& p : outside) {
+        positions.push_back(p);
+        values.emplace_back(100.0f);
+    }
+    const rt::color got = rt::box_reconstruct(i, j, positions, values);
+    INFO("only the samples in the square [i, i + 1] x [j, j + 1] count: (0.5 + 1) / 2 = 0.75");
+    CHECK(got.r == doctest::Approx(0.75));
+    CHECK(got.g == doctest::Approx(0.75));
+    CHECK(got.b == doctest::Approx(0.75));
+    const rt::color none = rt::box_reconstruct(7, 7, positions, values);
+    INFO("a pixel with no sample inside is black (0, 0, 0), never 0 / 0");
+    CHECK(none.r == 0);
+    CHECK(none.g == 0);
+    CHECK(none.b == 0);
+}
+
+TEST_CASE("jittered samples with the box on an edge: the covered fraction is off by at most one column of cells")
+{
+    // the pixel (2, 1) left of the vertical edge x = 2 + c is covered by the fraction c.
+    // Stratified: the cells wholly left of the edge count exactly, so only the
+    // column the edge crosses is a guess, and the error is at most 1/n.
+    const int i = 2, j = 1;
+    for (const int n : {1, 2, 4, 8})
+        for (const double c : {0.1, 0.3, 0.5, 0.77})
+            for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+                rt::pcg32 rng = generator_for(seed, i, j);
+                const std::vector<rt::vec2> samples = rt::jittered_samples(i, j, n, rng);
+                std::vector<rt::color> values;
+                for (const rt::vec2& p : samples)
+                    values.emplace_back(p.x < i + c ? 1.0f : 0.0f);
+                const double estimate = rt::box_reconstruct(i, j, samples, values).r;
+                CAPTURE(n);
+                CAPTURE(c);
+                CAPTURE(seed);
+                CAPTURE(estimate);
+                CHECK(std::fabs(estimate - c) <= 1.0 / n + 1e-6);
+            }
 }

@@ -32,6 +32,7 @@
 #include "radiance.hpp"
 #include "random.hpp"
 #include "ray.hpp"
+#include "pixel_sampling.hpp"
 #include "ray_image.hpp"
 #include "raytracer.hpp"
 #include "render_setup.hpp"

@@ -3,15 +3,19 @@
 //
 //     stage02_generate_rays scenes/showcase.scene -o rays.png
 //     stage02_generate_rays scenes/showcase.scene -o rays.ppm --projection orthographic
+//     stage02_generate_rays scenes/showcase.scene --edge edge   (also edge-1.png, edge-16.png)
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <rt/camera.hpp>
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
 #include <rt/scene_loader.hpp>
 
+#include "edge.hpp"
 #include "stage_main.hpp"
 #include "support.hpp"
 
@@ -22,7 +26,9 @@ const char* usage =
     "Writes an image whose pixels show the direction of each pixel's ray.\n"
     "  -o OUTPUT       .png, .ppm or .pfm (default rays.png)\n"
     "  --strict        warnings of the OBJ files (missing materials) are errors\n"
-    "  --projection P  override the scene camera's projection\n";
+    "  --projection P  override the scene camera's projection\n"
+    "  --edge PREFIX   also PREFIX-1.png and PREFIX-16.png: an edge seen with one ray per pixel\n"
+    "                  (its centre) and with 4 x 4 jittered samples averaged (your sampling)\n";
 
 } // namespace
 
@@ -30,7 +36,7 @@ int main(int argc, char** argv)
 {
     return stage::run("stage02_generate_rays", [&] {
         stage::arguments args(argc, argv);
-        std::string scene_path, output = "rays.png", projection;
+        std::string scene_path, output = "rays.png", projection, edge_prefix;
         bool strict = false;
         while (!args.done()) {
             const std::string arg = args.take();
@@ -45,8 +51,11 @@ int main(int argc, char** argv)
                 projection = args.value_of("--projection");
                 if (projection != "perspective" && projection != "orthographic")
                     throw rt::error("--projection: expected perspective or orthographic, found '" + projection + "'");
+            } else if (arg == "--edge") {
+                edge_prefix = args.value_of("--edge");
             } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --projection, --help), found '" + arg + "'; see --help");
+                throw rt::error("expected an option (-o, --projection, --edge, --help), found '" + arg +
+                                "'; see --help");
             } else if (scene_path.empty()) {
                 scene_path = arg;
             } else {
@@ -55,9 +64,21 @@ int main(int argc, char** argv)
         }
         if (scene_path.empty())
             throw rt::error("expected a scene file, found none; see --help");
-        rt::check_writable(output); // fail before the work, not after it
-        rt::check_image_path(output);
-        stage::check_input_and_outputs(scene_path, "a scene file", {output});
+        std::vector<std::filesystem::path> outputs = {output};
+        if (!edge_prefix.empty()) {
+            outputs.emplace_back(edge_prefix + "-1.png");
+            outputs.emplace_back(edge_prefix + "-16.png");
+            for (std::size_t k = 1; k < outputs.size(); ++k)
+                if (std::filesystem::absolute(outputs[k]).lexically_normal() ==
+                    std::filesystem::absolute(outputs[0]).lexically_normal())
+                    throw rt::error("-o " + output + ": expected an output apart from the edge pictures, found " +
+                                    outputs[k].string() + " among them; choose another -o or --edge");
+        }
+        for (const std::filesystem::path& path : outputs) { // fail before the work, not after it
+            rt::check_writable(path.string());
+            rt::check_image_path(path.string());
+        }
+        stage::check_input_and_outputs(scene_path, "a scene file", outputs);
 
         rt::scene s = stage::load_scene(scene_path, strict);
         if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
@@ -68,9 +89,22 @@ int main(int argc, char** argv)
             s.cam.kind = rt::projection::perspective;
             s.cam.plane.reset();
         }
-        rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
+        rt::check_not_input(outputs, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
-        stage::save_image(output, rt::render_ray_directions(gen), 1.0f);
+        const rt::image rays = rt::render_ray_directions(gen);
+        if (edge_prefix.empty()) {
+            stage::save_image(output, rays, 1.0f);
+        } else {
+            const stage::edge_pictures edge = stage::render_edge(gen);
+            stage::save_images({{output, &rays, 1.0f},
+                                {outputs[1].string(), &edge.centre, 1.0f},
+                                {outputs[2].string(), &edge.sixteen, 1.0f}}); // all three or none
+            // the RMS difference from the exact fraction of each pixel above the edge (edge.hpp)
+            std::fprintf(stderr,
+                         "edge: %d pixels on the edge, RMS error of their values: 1 ray at the centre %.4f, "
+                         "1 jittered sample %.4f, 16 jittered samples (4 x 4, box) %.4f\n",
+                         edge.edge_pixels, edge.rms_centre, edge.rms_one, edge.rms_sixteen);
+        }
         // then what stage 02 computed from the camera: the frame and the window (FCG sec. 4.3)
         std::fprintf(stderr, "e %g %g %g\nu %g %g %g\nv %g %g %g\nw %g %g %g\nwindow l %g r %g b %g t %g, d %g\n",
                      double(gen.e.x), double(gen.e.y), double(gen.e.z), double(gen.basis.u.x),
@@ -78,7 +112,10 @@ int main(int argc, char** argv)
                      double(gen.basis.v.z), double(gen.basis.w.x), double(gen.basis.w.y), double(gen.basis.w.z),
                      double(gen.plane.l), double(gen.plane.r), double(gen.plane.b), double(gen.plane.t),
                      double(gen.d));
-        std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)\n";
+        std::cerr << "wrote " << output << " (" << s.width << "x" << s.height << " ray directions)";
+        if (!edge_prefix.empty())
+            std::cerr << ", " << outputs[1].string() << " and " << outputs[2].string() << " (the edge)";
+        std::cerr << '\n';
         return 0;
     });
 }
