@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,34 +37,29 @@ int main(int argc, char** argv)
 {
     return stage::run("stage02_generate_rays", [&] {
         stage::arguments args(argc, argv);
-        std::string scene_path, output = "rays.png", projection, edge_prefix;
+        std::string output = "rays.png", projection, edge_prefix;
         bool strict = false;
-        while (!args.done()) {
-            const std::string arg = args.take();
-            if (arg == "--help" || arg == "-h") {
-                std::cout << usage;
-                return 0;
-            } else if (arg == "-o") {
-                output = args.value_of("-o");
-            } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
-                strict = true;
-            } else if (arg == "--projection") {
-                projection = args.value_of("--projection");
-                if (projection != "perspective" && projection != "orthographic")
-                    throw rt::error("--projection: expected perspective or orthographic, found '" + projection + "'");
-            } else if (arg == "--edge") {
-                edge_prefix = args.value_of("--edge");
-            } else if (!arg.empty() && arg[0] == '-') {
-                throw rt::error("expected an option (-o, --projection, --edge, --help), found '" + arg +
-                                "'; see --help");
-            } else if (scene_path.empty()) {
-                scene_path = arg;
-            } else {
-                throw rt::error("expected one scene file, found also '" + arg + "'; see --help");
-            }
-        }
-        if (scene_path.empty())
-            throw rt::error("expected a scene file, found none; see --help");
+        const std::optional<std::string> scene_file = stage::read_command_line(
+            args, usage, "-o, --projection, --edge, --strict", [&](const std::string& arg) {
+                if (arg == "-o") {
+                    output = args.value_of("-o");
+                } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
+                    strict = true;
+                } else if (arg == "--projection") {
+                    projection = args.value_of("--projection");
+                    if (projection != "perspective" && projection != "orthographic")
+                        throw rt::error("--projection: expected perspective or orthographic, found '" + projection +
+                                        "'");
+                } else if (arg == "--edge") {
+                    edge_prefix = args.value_of("--edge");
+                } else {
+                    return false;
+                }
+                return true;
+            });
+        if (!scene_file)
+            return 0; // --help
+        const std::string& scene_path = *scene_file;
         std::vector<std::filesystem::path> outputs = {output};
         if (!edge_prefix.empty()) {
             outputs.emplace_back(edge_prefix + "-1.png");
