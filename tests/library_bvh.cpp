@@ -350,3 +350,66 @@ TEST_CASE("the BVH agrees hit for hit with the flat list on the Stanford bunny")
     CHECK(hits > rays / 4);
     CHECK(disagreements == 0);
 }
+
+TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last copy, as the list does")
+{
+    // every centroid is the same point, so no plane separates them
+    rt::mesh m;
+    m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    for (int k = 0; k < 1000; ++k)
+        m.triangles.push_back({0, 1, 2});
+    rt::scene s;
+    s.shapes.push_back(m);
+    const rt::accelerator tree(s, rt::accelerator_kind::bvh);
+    CHECK(tree.stats().depth < rt::bvh::max_depth + 2);
+    rt::hit_record rec;
+    REQUIRE(tree.closest_hit(rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
+    CHECK(rec.primitive == 999);
+}
+
+TEST_CASE("flat and BVH accelerators, scalar and SIMD traversal agree hit for hit on random scenes")
+{
+    std::mt19937 random(2024);
+    const int setups[][3] = {{300, 0, 0}, {0, 600, 1}, {150, 300, 1}};
+    for (const auto& kind : setups) {
+        const rt::scene s = random_scene(random, kind[0], kind[1], kind[2] != 0);
+        const rt::accelerator flat(s, rt::accelerator_kind::flat);
+        const rt::accelerator tree(s, rt::accelerator_kind::bvh);
+        REQUIRE(flat.kind() == rt::accelerator_kind::flat);
+        REQUIRE(tree.kind() == rt::accelerator_kind::bvh);
+        REQUIRE(tree.stats().nodes > 1);
+        std::size_t disagreements = 0;
+        for (const rt::ray& r : random_rays(random, 1500)) {
+            rt::hit_record from_flat, from_tree;
+            const bool flat_hit = flat.closest_hit(r, 0, rt::infinity, from_flat);
+            const bool tree_hit = tree.closest_hit(r, 0, rt::infinity, from_tree);
+            rt::primitive_hit scalar_hit, simd_hit;
+            const bool tree_scalar = tree.tree().closest_scalar(r, 0, rt::infinity, scalar_hit);
+            const bool tree_simd = tree.tree().closest(r, 0, rt::infinity, simd_hit);
+            bool agree = flat_hit == tree_hit && tree_scalar == tree_simd && tree_hit == tree_simd &&
+                         tree.tree().any_scalar(r, 0, rt::infinity) == tree.tree().any(r, 0, rt::infinity) &&
+                         flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity);
+            if (agree && flat_hit)
+                agree = same_hit(from_flat, from_tree) && scalar_hit.t == simd_hit.t && scalar_hit.id == simd_hit.id;
+            disagreements += agree ? 0 : 1;
+        }
+        INFO(s.shapes.size() << " shapes (" << kind[0] << " spheres, " << kind[1] << " triangles)");
+        CHECK(disagreements == 0);
+    }
+}
+
+TEST_CASE("the accelerators keep the later shape at an equal t, as the list does")
+{
+    rt::scene s;
+    s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 3});
+    s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 4});
+    const rt::ray down_z{{0, 0, 0}, {0, 0, -1}};
+    for (rt::accelerator_kind kind : {rt::accelerator_kind::flat, rt::accelerator_kind::bvh}) {
+        const rt::accelerator world(s, kind);
+        rt::hit_record rec;
+        REQUIRE(world.closest_hit(down_z, 0, rt::infinity, rec));
+        CHECK(rec.shape == 1);
+        CHECK(world.any_hit(down_z, 0, 3));
+        CHECK_FALSE(world.any_hit(down_z, 0, real(1.5)));
+    }
+}

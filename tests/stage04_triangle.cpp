@@ -29,7 +29,6 @@
 #include <vector>
 
 #include <rt/accelerator.hpp>
-#include <rt/bvh.hpp>
 #include <rt/hit_list.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/offset.hpp>
@@ -128,8 +127,10 @@ namespace {
 
 } // namespace
 
-TEST_CASE("the BVH and the list return the same closest hit and the same any-hit answer on random scenes")
+TEST_CASE("the list returns the closest hit and the any-hit answer of the library's BVH on random scenes")
 {
+    // The library's BVH (rt::accelerator, tested in library_bvh) is the oracle:
+    // the same hits, the same shape at an equal t, the same any-hit answers.
     std::mt19937 random(2024);
     struct setup {
         const char* name;
@@ -143,48 +144,37 @@ TEST_CASE("the BVH and the list return the same closest hit and the same any-hit
         const std::string kind_name = kind.name;
         CAPTURE(kind_name);
         const rt::scene s = random_scene(random, kind.spheres, kind.triangles, kind.meshes);
-        const rt::accelerator flat(s, rt::accelerator_kind::flat);
         const rt::accelerator tree(s, rt::accelerator_kind::bvh);
-        REQUIRE(flat.kind() == rt::accelerator_kind::flat);
-        REQUIRE(tree.kind() == rt::accelerator_kind::bvh);
-        REQUIRE(tree.stats().nodes > 1);
-        std::size_t hits = 0, disagreements = 0, any_disagreements = 0;
+        std::size_t hits = 0;
         const std::vector<rt::ray> rays = random_rays(random, 1500);
-        for (const rt::ray& r : rays) {
-            rt::hit_record from_list, from_flat, from_tree;
+        for (std::size_t k = 0; k < rays.size(); ++k) {
+            const rt::ray& r = rays[k];
+            rt::hit_record from_list, from_tree;
             const bool list_hit = rt::closest_hit_list(s, r, 0, rt::infinity, from_list);
-            const bool flat_hit = flat.closest_hit(r, 0, rt::infinity, from_flat);
             const bool tree_hit = tree.closest_hit(r, 0, rt::infinity, from_tree);
-            rt::primitive_hit scalar_hit, simd_hit;
-            const bool tree_scalar = tree.tree().closest_scalar(r, 0, rt::infinity, scalar_hit);
-            const bool tree_simd = tree.tree().closest(r, 0, rt::infinity, simd_hit);
-            bool agree = list_hit == flat_hit && list_hit == tree_hit && tree_scalar == tree_simd &&
-                         tree.tree().any_scalar(r, 0, rt::infinity) == tree.tree().any(r, 0, rt::infinity);
-            if (agree && list_hit) {
+            INFO("ray " << k << " of " << rays.size() << ": " << r);
+            REQUIRE_MESSAGE(list_hit == tree_hit, "expected " << (tree_hit ? "a hit" : "no hit") << ", found "
+                                                              << (list_hit ? "a hit" : "none"));
+            if (list_hit) {
                 ++hits;
-                agree = same_hit(from_list, from_flat) && same_hit(from_list, from_tree) &&
-                        scalar_hit.t == simd_hit.t && scalar_hit.id == simd_hit.id;
+                REQUIRE_MESSAGE(same_hit(from_list, from_tree),
+                                "expected shape " << from_tree.shape << " at t = " << from_tree.t << ", found shape "
+                                                  << from_list.shape << " at t = " << from_list.t
+                                                  << ": the nearest hit, and at an equal t the later shape");
             }
-            disagreements += agree ? 0 : 1;
             // any hit, with tmax a little before and a little beyond the closest
             // hit (not at its computed t: there the answer depends on rounding,
             // see docs/stages/04-triangle.md) and at infinity
             const real before = list_hit ? from_list.t * (1 - real(1) / 1024) : real(1);
             const real beyond = list_hit ? from_list.t * (1 + real(1) / 1024) : real(10);
             for (real tmax : {before, beyond, rt::infinity}) {
-                const bool expected = list_hit && from_list.t <= tmax;
-                const bool answers[] = {rt::any_hit_list(s, r, 0, tmax), flat.any_hit(r, 0, tmax),
-                                        tree.any_hit(r, 0, tmax)};
-                for (bool answer : answers)
-                    any_disagreements += answer == expected ? 0 : 1;
+                const bool expected = tree.any_hit(r, 0, tmax);
+                REQUIRE_MESSAGE(rt::any_hit_list(s, r, 0, tmax) == expected,
+                                "any_hit_list with tmax = " << tmax << ": expected " << (expected ? "true" : "false"));
             }
         }
-        MESSAGE(kind_name << ": " << s.shapes.size() << " shapes, " << tree.primitive_count() << " primitives, "
-                          << rays.size() << " rays, " << hits << " hits, " << disagreements
-                          << " disagreements, any-hit disagreements " << any_disagreements);
-        CHECK(hits > rays.size() / 10);
-        CHECK(disagreements == 0);
-        CHECK(any_disagreements == 0);
+        MESSAGE(kind_name << ": " << s.shapes.size() << " shapes, " << rays.size() << " rays, " << hits << " hits");
+        CHECK_MESSAGE(hits > rays.size() / 10, "expected the random scene to be hit by a tenth of the rays at least");
     }
 }
 
@@ -217,31 +207,20 @@ TEST_CASE("the closest hit of the list: the nearest shape, its index, and at an 
     // a tmax before everything: no hit
     CHECK_FALSE(rt::closest_hit_list(s, down_z, 0, real(1.5), rec));
     CHECK_FALSE(rt::any_hit_list(s, down_z, 0, real(1.5)));
-    // the accelerators follow the same rule
-    for (rt::accelerator_kind kind : {rt::accelerator_kind::flat, rt::accelerator_kind::bvh}) {
-        const rt::accelerator world(s, kind);
-        REQUIRE(world.closest_hit(down_z, 0, rt::infinity, rec));
-        CHECK(rec.shape == 3);
-        CHECK(world.any_hit(down_z, 0, 3));
-        CHECK_FALSE(world.any_hit(down_z, 0, real(1.5)));
-    }
 }
 
-TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last copy, as the list does")
+TEST_CASE("many copies of one triangle: the list keeps the last copy")
 {
-    // every centroid is the same point, so no plane separates them
     rt::mesh m;
     m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     for (int k = 0; k < 1000; ++k)
         m.triangles.push_back({0, 1, 2});
     const rt::scene s = scene_of(m);
-    const rt::accelerator tree(s, rt::accelerator_kind::bvh);
-    CHECK(tree.stats().depth < rt::bvh::max_depth + 2);
     rt::hit_record rec;
-    REQUIRE(tree.closest_hit(rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
-    CHECK(rec.primitive == 999);
-    REQUIRE(rt::closest_hit_list(s, rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
-    CHECK(rec.primitive == 999);
+    REQUIRE_MESSAGE(rt::closest_hit_list(s, rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec),
+                    "expected the ray down the z axis to hit the 1000 copies of the triangle at t = 3");
+    CHECK_MESSAGE(rec.primitive == 999, "expected the last of 1000 copies (primitive 999) at an equal t: the later shape "
+                                        "or triangle wins a tie");
 }
 
 namespace {

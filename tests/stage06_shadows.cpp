@@ -43,9 +43,8 @@ TEST_CASE("a sphere over a plane: inside the analytic shadow disc is shadowed, o
     CHECK_MESSAGE(c.shadow_points > 20, "expected more than 20 plane points inside the shadow (most hide behind the ball)");
 }
 
-TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor leaks with the robust offset, acne with a fixed epsilon")
+TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor leaks with the robust offset, the fixed epsilon's acne shown beside")
 {
-    int fixed_acne_total = 0;
     std::string table = "scale     offset    lit  shadowed  robust-acne  robust-leaks  fixed-acne(1e-4)\n";
     for (const rt_test::acne_setting& set : rt_test::acne_settings()) {
         const shadow_scene q = set.scene();
@@ -63,11 +62,8 @@ TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor 
         CHECK_MESSAGE(r.shadow_points > 20, "expected more than 20 plane points inside the shadow");
         CHECK_MESSAGE(r.leaks == 0, "expected no leaks: " << r.leaks << " points inside the shadow saw the light "
                                     "(the offset must not carry the shadow ray past the ball)");
-        fixed_acne_total += f.acne;
     }
-    MESSAGE(table);
-    CHECK_MESSAGE(fixed_acne_total > 0, "expected the textbook's fixed epsilon (1e-4) to show acne at some scale or offset "
-                                        "(a property of light_visible_fixed_epsilon, not of your code)");
+    MESSAGE(table); // the fixed epsilon's acne column: library_shadows_fixed_epsilon checks it, not this suite
 }
 
 TEST_CASE("only occluders between the point and the light cast shadows")
