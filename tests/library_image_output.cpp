@@ -158,3 +158,77 @@ TEST_CASE("plain gamma: x^(1/gamma), gamma 1 stores linear values")
     CHECK(rt::gamma_encode(-1.0f, 2.2f) == 0.0f);
     CHECK(rt::gamma_encode(std::nanf(""), 2.2f) == 0.0f);
 }
+
+namespace {
+
+std::string read_file_bytes(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+} // namespace
+
+TEST_CASE("AOVs are stored as data: no tone curve, and depth scaled by the image's farthest hit")
+{
+    // output_encoding's contract, without the stage-08 exercises: the settings it picks
+    rt::image depth(4, 1);
+    const float d[] = {0.0f, 1.0f, 3.0f, 4.0f};
+    for (int x = 0; x < 4; ++x)
+        depth.at(x, 0) = rt::color(d[x]);
+    const rt::encoding shaded{3.0f, rt::tonemap_kind::aces, rt::transfer_kind::srgb, 2.2f};
+    const rt::encoding enc = rt::output_encoding(rt::aov_kind::depth, shaded, depth);
+    INFO("a depth image: clamp, gamma 1 and an exposure that maps the farthest hit, 4, to exactly 1");
+    CHECK(enc.tonemap == rt::tonemap_kind::clamp);
+    CHECK(enc.transfer == rt::transfer_kind::gamma);
+    CHECK(enc.gamma == 1.0f);
+    CHECK(rt::apply_exposure(rt::color(4.0f), enc.exposure).r == 1.0f);
+    CHECK(rt::apply_exposure(rt::color(1.0f), enc.exposure).r == 0.25f);
+    // a farthest distance that is no power of two still maps to 1 within a rounding
+    depth.at(3, 0) = rt::color(3.0f);
+    const float top = rt::apply_exposure(rt::color(3.0f), rt::output_encoding(rt::aov_kind::depth, shaded, depth).exposure).r;
+    CHECK(top == doctest::Approx(1.0f).epsilon(1e-6));
+    // normals are (n + 1) / 2 in [0, 1]: stored linearly, whatever the shaded settings
+    const rt::encoding normals = rt::output_encoding(rt::aov_kind::normal, shaded, depth);
+    CHECK(normals.exposure == 0.0f);
+    CHECK(normals.tonemap == rt::tonemap_kind::clamp);
+    CHECK(normals.gamma == 1.0f);
+    // and the shaded image keeps its own settings
+    CHECK(rt::output_encoding(rt::aov_kind::none, shaded, depth).tonemap == rt::tonemap_kind::aces);
+}
+
+TEST_CASE("atomic output: a write that fails half-way leaves the earlier file intact and nothing else")
+{
+    scratch_folder folder("atomic");
+    const std::filesystem::path target = folder.path / "render.pfm";
+    const rt::image first(2, 1, rt::color(0.5f));
+    rt::save_image(target, first, rt::encoding{}); // PFM: linear, no encoding step
+    const std::string before = read_file_bytes(target);
+    REQUIRE(before.size() == std::string("PF\n2 1\n-1\n").size() + 2 * 3 * 4);
+
+    // a writer that has written part of a new image when it fails
+    const rt::image second(64, 64, rt::color(0.9f));
+    CHECK_THROWS_AS(rt::write_atomically(target,
+                                         [&](std::ostream& out) {
+                                             rt::write_pfm(out, second);
+                                             out.flush();
+                                             throw std::runtime_error("induced failure half-way");
+                                         }),
+                    std::runtime_error);
+    CHECK(read_file_bytes(target) == before);
+    int files = 0; // no temporary file is left beside it
+    for (const auto& entry : std::filesystem::directory_iterator(folder.path)) {
+        CAPTURE(entry.path().string());
+        ++files;
+    }
+    CHECK(files == 1);
+
+    // an unwritable destination is an error before anything is written
+    CHECK_THROWS_AS(rt::save_image(folder.path / "missing-folder" / "x.pfm", first, rt::encoding{}), rt::error);
+    CHECK_THROWS_AS(rt::save_image(folder.path, first, rt::encoding{}), rt::error); // a folder, not a file
+    CHECK_THROWS_AS(rt::save_image(folder.path / "x.jpg", first, rt::encoding{}), rt::error);
+    CHECK_THROWS_AS(rt::check_image_output(folder.path / "x.jpg"), rt::error); // checked before rendering
+    CHECK_THROWS_AS(rt::check_image_output(folder.path / "missing-folder" / "x.png"), rt::error);
+    CHECK_NOTHROW(rt::check_image_output(folder.path / "next.PNG"));
+    CHECK(read_file_bytes(target) == before);
+}
