@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <rt/byte_level.hpp>
 #include <rt/camera.hpp>
 #include <rt/image_io.hpp>
 #include <rt/pixel_sampling.hpp>
@@ -551,4 +553,35 @@ TEST_CASE("jittered samples with the box on an edge: the covered fraction is off
                 CAPTURE(estimate);
                 CHECK(std::fabs(estimate - c) <= 1.0 / n + 1e-6);
             }
+}
+
+TEST_CASE("quantise: every level k/255 comes back as k, halves round up, the rest clamps")
+{
+    INFO("expected byte = round(255 clamp(v, 0, 1)), halves up: k / 255 gives k, (k + 0.49) / 255 gives k, "
+         "(k + 0.51) / 255 gives k + 1; below 0 and NaN give 0, above 1 and inf give 255");
+    for (int k = 0; k <= 255; ++k) {
+        CAPTURE(k);
+        REQUIRE(int(rt::quantize(float(k) / 255)) == k);
+        if (k < 255) {
+            REQUIRE(int(rt::quantize((float(k) + 0.49f) / 255)) == k);
+            REQUIRE(int(rt::quantize((float(k) + 0.51f) / 255)) == k + 1);
+        }
+    }
+    CHECK(int(rt::quantize(0.5f)) == 128); // 127.5 rounds up
+    CHECK(int(rt::quantize(-0.1f)) == 0);
+    CHECK(int(rt::quantize(1.7f)) == 255);
+    CHECK(int(rt::quantize(std::numeric_limits<float>::infinity())) == 255);
+    CHECK(int(rt::quantize(std::nanf(""))) == 0);
+}
+
+TEST_CASE("to_byte, the early stages' byte: a plain gamma, then quantize")
+{
+    INFO("to_byte(x, gamma) stores quantize(x^(1/gamma)): 0 and 1 exact, NaN and negatives 0, above 1 255");
+    CHECK(int(rt::to_byte(0.0f)) == 0);
+    CHECK(int(rt::to_byte(1.0f)) == 255);
+    CHECK(int(rt::to_byte(-3.0f)) == 0);
+    CHECK(int(rt::to_byte(std::nanf(""))) == 0);
+    CHECK(int(rt::to_byte(7.0f)) == 255);
+    CHECK(int(rt::to_byte(0.5f, 1.0f)) == 128);
+    CHECK(int(rt::to_byte(0.25f, 2.0f)) == 128); // 0.25^(1/2) = 0.5
 }

@@ -4,7 +4,7 @@
 // pixel goes, in this order, through
 //     exposure  ->  tone map  ->  transfer function  ->  quantisation
 //     c 2^stops     [0,inf)->[0,1]  sRGB or gamma        round(255 v)
-// (tonemap.hpp, transfer.hpp and quantize below). Quantisation rounds to the
+// (tonemap.hpp, transfer.hpp, and quantize of byte_level.hpp, written in stage 02). Quantisation rounds to the
 // nearest of the 256 levels k / 255, so every level is reached exactly and the
 // error is at most half a level.
 #pragma once
@@ -32,21 +32,6 @@ struct encoding {
     transfer_kind transfer = transfer_kind::srgb;
     float gamma = 2.2f;                          ///< used when transfer == gamma
 };
-
-/// An encoded value in [0, 1] to one of the 256 byte levels: round(255 v),
-/// halves rounded up; values below 0 (and NaN) give 0, above 1 give 255.
-inline std::uint8_t quantize(float v)
-{
-    // RT_EXERCISE_BEGIN(stage08: quantise to 8 bits)
-    // Hint: the given nearest_byte_level(v) rounds a v already in [0, 1]; the
-    //   task is every other value: below 0, NaN, above 1.
-    if (!(v > 0.0f)) // NaN fails this comparison too
-        return 0;
-    if (v >= 1.0f)
-        return 255;
-    return nearest_byte_level(v);
-    // RT_EXERCISE_END
-}
 
 /// One linear channel through the whole pipeline, to its display value in [0, 1] (before quantising).
 inline float encode_channel(float linear, const encoding& enc)

@@ -31,13 +31,13 @@
 
 namespace rt {
 
-/// One linear channel to a byte, the early stages' plain path: clamp to
-/// [0, 1] (NaN to 0), encode with a plain gamma (value^(1/gamma)), then the
-/// given nearest_byte_level.
+/// One linear channel to a byte, the early stages' plain path: encode with a
+/// plain gamma (value^(1/gamma)), then quantize (byte_level.hpp, stage 02),
+/// which stores NaN and what is below 0 as 0 and what is above 1 as 255.
 inline std::uint8_t to_byte(float linear, float gamma = 2.2f)
 {
-    const float clamped = std::isnan(linear) ? 0.0f : std::clamp(linear, 0.0f, 1.0f);
-    return nearest_byte_level(std::pow(clamped, 1.0f / gamma));
+    // a negative value has no real power: it is stored as 0, as quantize stores it
+    return quantize(linear > 0.0f ? std::pow(linear, 1.0f / gamma) : 0.0f);
 }
 
 /// The image as 8-bit RGB bytes, top row first (3 bytes a pixel).
