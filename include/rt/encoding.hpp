@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "byte_level.hpp"
+#include "encoding_settings.hpp" // rt::encoding, the pipeline's settings
 #include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
 #include "image.hpp"
 #include "tonemap.hpp"
@@ -22,16 +23,6 @@
 #include "vec.hpp"
 
 namespace rt {
-
-enum class transfer_kind { srgb, gamma };
-
-/// How linear colours become bytes: the settings of the whole pipeline.
-struct encoding {
-    float exposure = 0.0f;                       ///< stops: colours are scaled by 2^exposure
-    tonemap_kind tonemap = tonemap_kind::clamp;  ///< the curve from [0, inf) to [0, 1]
-    transfer_kind transfer = transfer_kind::srgb;
-    float gamma = 2.2f;                          ///< used when transfer == gamma
-};
 
 /// One linear channel through the whole pipeline, to its display value in [0, 1] (before quantising).
 inline float encode_channel(float linear, const encoding& enc)

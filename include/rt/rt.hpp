@@ -14,6 +14,7 @@
 #include "config.hpp"
 #include "encoded_output.hpp"
 #include "encoding.hpp"
+#include "encoding_settings.hpp"
 #include "enum_names.hpp"
 #include "error.hpp"
 #include "filter.hpp"

@@ -23,17 +23,11 @@
 #pragma once
 
 #include <cmath>
-#include <optional>
-#include <string>
-
-#include "enum_names.hpp"
+#include "encoding_settings.hpp" // tonemap_kind and its names
 #include "error.hpp" // rt::exercise_not_done, thrown by the student kit's unfinished exercises
 #include "vec.hpp"
 
 namespace rt {
-
-/// The tone maps the renderer offers (names as on the command line: clamp, reinhard, aces).
-enum class tonemap_kind { clamp, reinhard, aces };
 
 /// The channel scaled by 2^stops: +1 stop doubles the light, -1 halves it.
 inline color apply_exposure(const color& c, float stops)
@@ -93,17 +87,5 @@ inline color apply_tonemap(const color& c, tonemap_kind kind)
 {
     return color(apply_tonemap(c.r, kind), apply_tonemap(c.g, kind), apply_tonemap(c.b, kind));
 }
-
-/// The names of the tone maps; the first is the default.
-inline constexpr enum_name<tonemap_kind> tonemap_names[] = {
-    {tonemap_kind::clamp, "clamp"}, {tonemap_kind::reinhard, "reinhard"}, {tonemap_kind::aces, "aces"}};
-
-/// The tone map a name means ("clamp", "reinhard", "aces"), or nothing.
-inline std::optional<tonemap_kind> tonemap_from_name(const std::string& name)
-{
-    return value_named(tonemap_names, name);
-}
-
-inline const char* name_of(tonemap_kind kind) { return name_in(tonemap_names, kind); }
 
 } // namespace rt

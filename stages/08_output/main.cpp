@@ -24,7 +24,7 @@
 
 #include <rt/aov.hpp>
 #include <rt/camera.hpp>
-#include <rt/encoding.hpp>
+#include <rt/encoding_settings.hpp>
 #include <rt/error.hpp>
 #include <rt/image_io.hpp>
 #include <rt/os_error.hpp>
@@ -32,7 +32,6 @@
 #include <rt/renderer.hpp>
 #include <rt/scene.hpp>
 #include <rt/scene_input.hpp>
-#include <rt/tonemap.hpp>
 
 #include "pixel_story.hpp"
 #include "render_arguments.hpp"
@@ -197,23 +196,7 @@ int main(int argc, char** argv)
             // the ray through the pixel's centre, traced by the stage-07 colour function
             stage::story st =
                 stage::shaded_story(scene, "stage08_output", set.pixel.column, set.pixel.row, options.width, options.height);
-            const rt::encoding& enc = render.encoding;
-            const rt::color exposed = rt::apply_exposure(st.linear, enc.exposure);
-            const rt::color mapped = rt::apply_tonemap(exposed, enc.tonemap);
-            const std::array<std::uint8_t, 3> bytes = rt::encode_color(st.linear, enc);
-            auto text = [](const rt::color& c) {
-                return stage::number_text(double(c.r)) + " " + stage::number_text(double(c.g)) + " " +
-                       stage::number_text(double(c.b));
-            };
-            st.values.push_back({"samples:", std::to_string(options.samples_per_pixel) +
-                                                 " per pixel in the image; this story follows the ray through the centre"});
-            st.values.push_back({"exposed (2^" + stage::number_text(double(enc.exposure)) + "):", text(exposed)});
-            st.values.push_back({std::string("tone mapped (") + rt::name_of(enc.tonemap) + "):", text(mapped)});
-            st.values.push_back({std::string("stored bytes (") +
-                                     (enc.transfer == rt::transfer_kind::srgb ? std::string("sRGB")
-                                                                              : "gamma " + stage::number_text(double(enc.gamma))) +
-                                     "):",
-                                 std::to_string(bytes[0]) + " " + std::to_string(bytes[1]) + " " + std::to_string(bytes[2])});
+            stage::add_encoding_story(st, render.encoding, options.samples_per_pixel);
             if (set.pixel.json)
                 stage::print_story_json(std::cout, st, scene);
             else

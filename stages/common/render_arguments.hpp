@@ -11,7 +11,7 @@
 #include <string>
 
 #include <rt/camera.hpp>
-#include <rt/encoding.hpp>
+#include <rt/encoding_settings.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
 #include <rt/aov.hpp>
@@ -19,7 +19,6 @@
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
 #include <rt/scene.hpp>
-#include <rt/tonemap.hpp>
 
 #include "stage_main.hpp"
 #include "support.hpp"

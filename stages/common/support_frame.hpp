@@ -48,4 +48,8 @@ story shaded_story(const rt::scene& s, const std::string& program, int column, i
 /// rt::output_encoding's data encoding for a debug image of kind `aov`.
 void save_encoded(const std::string& path, const rt::image& img, rt::aov_kind aov, const rt::encoding& enc);
 
+/// The pixel story's last lines: what exposure, the tone map and the transfer
+/// curve make of the traced colour `st.linear`, down to the stored bytes.
+void add_encoding_story(story& st, const rt::encoding& enc, int samples_per_pixel);
+
 } // namespace stage
