@@ -1,6 +1,6 @@
 // slab_contract.hpp - the cases every robust ray-box (slab) test passes,
 // written once for the two the library has: rt::hit_box_robust (slab.hpp,
-// beside the stage-04 exercise) and the BVH's rt::hit_box (bvh.hpp). Axis-
+// beside the stage-04 exercise) and the BVH's rt::hit_box (bvh/box_test.hpp). Axis-
 // parallel rays, rays lying in a slab plane (0 * inf), -0 in a direction,
 // flat and empty boxes, the ends of [tmin, tmax]: a hit never reports a NaN.
 #pragma once

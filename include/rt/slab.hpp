@@ -27,7 +27,7 @@
 // A -0 in a direction needs nothing: 1/-0 = -inf, whose sign picks hi as the
 // near plane, as for any negative component; the book does the same.
 //
-// rt::hit_box (bvh.hpp) is the same robust test on a prepared ray, for the
+// rt::hit_box (bvh/box_test.hpp) is the same robust test on a prepared ray, for the
 // fast path; this header is the readable one.
 #pragma once
 

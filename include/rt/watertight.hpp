@@ -172,9 +172,11 @@ inline bool t_beyond_error_in_double(const watertight_ray& w, const real* v, int
 
 /// The watertight test's state after the edge functions: the corners
 /// translated to the ray origin and permuted (x, y, z: kx, ky, kz), sheared
-/// (X, Y) and the edge functions U, V, W. The scalar test and the SIMD leaf
-/// test of bvh.hpp fill it with the same arithmetic and hand it to
-/// watertight_finish, so the two decide every hit by the same code.
+/// (X, Y) and the edge functions U, V, W. The scalar test fills it and hands
+/// it to watertight_finish. The SIMD leaf test (bvh/leaf_test.hpp) does not
+/// use it: it repeats the same arithmetic in the same order, four lanes at a
+/// time, so both decide every hit with the same bits (library_watertight.cpp
+/// compares them).
 struct sheared_triangle {
     real x[3], y[3], z[3];
     real X[3], Y[3];

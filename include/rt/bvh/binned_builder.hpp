@@ -1,0 +1,400 @@
+// bvh/binned_builder.hpp - the binned SAH build of a binary tree.
+//
+// Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", IEEE
+// Symposium on Interactive Ray Tracing 2007, sec. 3: top down; each node's
+// primitives are sorted into `bins` equal slices of their centroids' extent on
+// each axis, and the node is split at the slice boundary of least surface area
+// heuristic cost (MacDonald, Booth, The Visual Computer 6(3), 1990):
+//     C = C_trav + C_isect (A_L B(N_L) + A_R B(N_R)) / A,
+// A the surface areas of the boxes, N the primitive counts and B(N) =
+// ceil(N / 4) the leaf tests they cost (leaf_tests: a leaf is tested a block
+// of four at a time). A node becomes a leaf when that is cheaper than any split
+// and it holds at most max_leaf_size primitives, or at max_depth. At the top
+// of the tree, build_spatial also tries planes that cut primitives
+// (spatial_split.hpp). wide_collapse.hpp then makes the tree 4-wide.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "../aabb.hpp"
+#include "../config.hpp"
+#include "../vec.hpp"
+#include "build_options.hpp"
+#include "packed.hpp"
+#include "spatial_split.hpp"
+
+namespace rt {
+namespace detail {
+
+/// The binned SAH build of a binary tree (see the top of this file).
+///
+/// Speed: one pass over a node's primitives bins them on all three axes at
+/// once; the two halves of the top of the tree are built on separate threads
+/// (bvh_options::threads), each into its own node array, and the arrays are
+/// joined in the order a single thread writes them, so the tree is the same
+/// whatever the number of threads.
+class binary_builder {
+public:
+    /// A split of a node by the SAH: the axis, where, its cost and the children's boxes.
+    struct split {
+        int axis = -1;
+        std::size_t bin = 0;  ///< the first bin of the right side
+        real cost = 0;        ///< A_L N_L + A_R N_R
+        aabb left, right;
+    };
+
+    binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,
+                   const packed_primitive* prims = nullptr)
+        : items_(items), options_(options), spare_threads_(spare_threads), prims_(prims),
+          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256))))
+    {
+        for (int axis = 0; axis < 3; ++axis)
+            bins_[axis].resize(bin_count_);
+        right_cost_.resize(bin_count_);
+        right_box_.resize(bin_count_);
+    }
+
+    std::vector<binary_node> nodes;
+    double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
+    std::size_t spatial_splits = 0;
+
+    /// The top of the tree with spatial splits (Stich, Friedrich, Dietrich,
+    /// "Spatial Splits in Bounding Volume Hierarchies", HPG 2009). `refs` are
+    /// this node's references (moved in, freed before the children are
+    /// built). A node whose best object split leaves two children that
+    /// overlap by more than spatial_overlap of the root's area also bins its
+    /// references between planes that may cut them (find_spatial_split); if
+    /// that costs less by the SAH, a reference that straddles the plane goes
+    /// to both children, each with the box of its part (clipped_box). The
+    /// pieces are references to the same primitive, so a ray gets the same
+    /// hit whichever it meets. A node where the overlap is small, or whose
+    /// subtree is small, is handed to build(), in place at the end of items_.
+    binary_child build_spatial(std::vector<build_item> refs, const aabb& box, int depth, real root_area,
+                               std::size_t& budget)
+    {
+        const std::size_t n = refs.size();
+        const auto hand_over = [&](const split* known = nullptr, const aabb* centroids = nullptr) {
+            const std::size_t begin = items_.size();
+            items_.insert(items_.end(), refs.begin(), refs.end());
+            std::vector<build_item>().swap(refs);
+            return build(begin, items_.size(), box, depth, known, centroids);
+        };
+        if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
+            return hand_over();
+        // a node where every reference is narrower than a slice on every
+        // axis gains nothing from cutting them (a fine mesh, or the lower
+        // part of the tree): build() does it in place and on threads
+        aabb centroids;
+        bool wide[3] = {false, false, false};
+        const vec3 slice_width = box.extent() / real(bin_count_);
+        for (const build_item& r : refs) {
+            centroids.grow(r.centroid);
+            const vec3 e = r.box.extent();
+            for (int axis = 0; axis < 3; ++axis)
+                wide[axis] = wide[axis] || e[axis] > slice_width[axis];
+        }
+        if (!wide[0] && !wide[1] && !wide[2])
+            return hand_over(nullptr, &centroids);
+        const split object = find_split(refs.data(), n, centroids);
+        if (object.axis < 0)
+            return hand_over(&object, &centroids);
+        aabb overlap;
+        overlap.lo = glm::max(object.left.lo, object.right.lo);
+        overlap.hi = glm::min(object.left.hi, object.right.hi);
+        if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
+            return hand_over(&object, &centroids);
+        const spatial_split cut = find_spatial_split(refs, box, wide, bin_count_, prims_, options_.primitives_per_test);
+
+        std::vector<build_item> left, right;
+        if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
+            for (const build_item& r : refs) {
+                if (r.box.hi[cut.axis] <= cut.plane) {
+                    left.push_back(r);
+                } else if (r.box.lo[cut.axis] >= cut.plane) {
+                    right.push_back(r);
+                } else {
+                    const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
+                    const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
+                    if (below.empty()) {
+                        right.push_back(r);
+                    } else if (above.empty()) {
+                        left.push_back(r);
+                    } else {
+                        left.push_back(build_item{below, below.center(), r.index});
+                        right.push_back(build_item{above, above.center(), r.index});
+                    }
+                }
+            }
+            if (left.empty() || right.empty()) {
+                std::vector<build_item>().swap(left);
+                std::vector<build_item>().swap(right);
+            } else {
+                budget -= std::min(budget, left.size() + right.size() - n);
+                ++spatial_splits;
+            }
+        }
+        if (left.empty() && right.empty()) { // the object split, as build() makes it
+            const real low = centroids.lo[object.axis];
+            const real scale = real(bin_count_) / (centroids.hi[object.axis] - low);
+            for (const build_item& r : refs)
+                (bin_of(r.centroid[object.axis], low, scale) < object.bin ? left : right).push_back(r);
+        }
+        std::vector<build_item>().swap(refs);
+        aabb left_box, right_box;
+        for (const build_item& r : left)
+            left_box.grow(r.box);
+        for (const build_item& r : right)
+            right_box.grow(r.box);
+
+        // the budget left is shared by the children in proportion to their
+        // references, so the tree does not depend on which is built first
+        std::size_t right_budget =
+            std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
+        std::size_t left_budget = budget - right_budget;
+        budget = 0;
+        const std::size_t index = nodes.size();
+        nodes.emplace_back();
+        sah_cost += double(options_.traversal_cost) * double(half_area(box));
+        binary_child l, r;
+        if (spare_threads_ > 0 && n >= parallel_threshold) {
+            // the right child into an item array of its own: it appends to it
+            std::vector<build_item> right_items;
+            build_in_parallel(
+                right_items, l, r,
+                [&] { return build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget); },
+                [&](binary_builder& b) {
+                    return b.build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+                });
+        } else {
+            l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
+            r = build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+        }
+        nodes[index].side[0] = l;
+        nodes[index].side[1] = r;
+        binary_child inner;
+        inner.box = box;
+        inner.index = std::uint32_t(index);
+        return inner;
+    }
+
+    /// Builds the subtree of items [begin, end) inside `box`; returns it as a
+    /// child. `known` and `known_centroids`, when given, are this node's best
+    /// split and centroid box, already found by build_spatial.
+    binary_child build(std::size_t begin, std::size_t end, const aabb& box, int depth, const split* known = nullptr,
+                       const aabb* known_centroids = nullptr)
+    {
+        const std::size_t n = end - begin;
+        const real area = half_area(box);
+        if (n <= 1 || depth >= options_.max_depth)
+            return leaf(begin, n, box, area);
+
+        aabb centroids;
+        if (known_centroids != nullptr)
+            centroids = *known_centroids;
+        else
+            for (std::size_t i = begin; i < end; ++i)
+                centroids.grow(items_[i].centroid);
+
+        aabb left_box, right_box;
+        std::size_t middle = begin;
+        const split best = known != nullptr ? *known : find_split(items_.data() + begin, n, centroids);
+        if (best.axis < 0) {
+            // every centroid is the same point: no plane separates them
+            if (n <= options_.max_leaf_size)
+                return leaf(begin, n, box, area);
+            middle = begin + n / 2;
+            for (std::size_t i = begin; i < middle; ++i)
+                left_box.grow(items_[i].box);
+            for (std::size_t i = middle; i < end; ++i)
+                right_box.grow(items_[i].box);
+        } else {
+            const real split_cost =
+                area > 0 ? options_.traversal_cost + options_.intersection_cost * best.cost / area : real(0);
+            const real leaf_cost = options_.intersection_cost * tests(n);
+            if (n <= options_.max_leaf_size && leaf_cost <= split_cost)
+                return leaf(begin, n, box, area);
+            const int axis = best.axis;
+            const real low = centroids.lo[axis];
+            const real scale = real(bin_count_) / (centroids.hi[axis] - low);
+            const auto first_right = std::partition(
+                items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),
+                [&](const build_item& item) { return bin_of(item.centroid[axis], low, scale) < best.bin; });
+            middle = std::size_t(first_right - items_.begin());
+            left_box = best.left;
+            right_box = best.right;
+        }
+
+        const std::size_t index = nodes.size();
+        nodes.emplace_back();
+        sah_cost += double(options_.traversal_cost) * double(area);
+        binary_child left, right;
+        if (spare_threads_ > 0 && n >= parallel_threshold) {
+            // the right half sorts its own range of items_ in place
+            build_in_parallel(
+                items_, left, right, [&] { return build(begin, middle, left_box, depth + 1); },
+                [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1); });
+        } else {
+            left = build(begin, middle, left_box, depth + 1);
+            right = build(middle, end, right_box, depth + 1);
+        }
+        nodes[index].side[0] = left;
+        nodes[index].side[1] = right;
+        binary_child inner;
+        inner.box = box;
+        inner.index = std::uint32_t(index);
+        return inner;
+    }
+
+private:
+    /// Builds a node's left child here (build_left()) and its right child on a
+    /// thread of its own with half of the spare threads (build_right(b), b a
+    /// builder over `right_items`: items_ itself, or an array of its own), then
+    /// joins the arrays as a single thread writes them: the right subtree's
+    /// nodes after the left subtree's, and its items after ours when it had
+    /// an array of its own. So the tree does not depend on the thread count.
+    template <class Left, class Right>
+    void build_in_parallel(std::vector<build_item>& right_items, binary_child& left, binary_child& right,
+                           const Left& build_left, const Right& build_right)
+    {
+        const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
+        spare_threads_ -= for_right + 1;
+        binary_builder right_builder(right_items, options_, for_right, prims_);
+        std::exception_ptr failure;
+        std::thread worker([&] {
+            try {
+                right = build_right(right_builder);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+        });
+        try {
+            left = build_left();
+        } catch (...) {
+            worker.join();
+            throw;
+        }
+        worker.join();
+        if (failure)
+            std::rethrow_exception(failure);
+        const bool own_items = &right_items != &items_;
+        const std::uint32_t node_offset = std::uint32_t(nodes.size());
+        const std::uint32_t item_offset = own_items ? std::uint32_t(items_.size()) : 0;
+        const auto moved = [&](binary_child& c) { c.index += c.count == 0 ? node_offset : item_offset; };
+        for (binary_node& node : right_builder.nodes)
+            for (binary_child& side : node.side)
+                moved(side);
+        moved(right);
+        nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
+        if (own_items)
+            items_.insert(items_.end(), right_items.begin(), right_items.end());
+        sah_cost += right_builder.sah_cost;
+        spatial_splits += right_builder.spatial_splits;
+    }
+
+    /// Below this many primitives a subtree is not worth a thread.
+    static constexpr std::size_t parallel_threshold = 4096;
+
+    struct bin {
+        aabb box;
+        std::size_t count = 0;
+    };
+
+    /// The leaf tests that n primitives cost: ceil(n / primitives_per_test)
+    /// (the SIMD leaf test handles a block of four triangles at the price of
+    /// about one; Embree's SAH counts its triangle4 blocks the same way).
+    real tests(std::size_t n) const { return leaf_tests(n, options_.primitives_per_test); }
+
+    std::size_t bin_of(real centroid, real low, real scale) const
+    {
+        const real slot = (centroid - low) * scale;
+        return std::min(bin_count_ - 1, std::size_t(slot > 0 ? slot : real(0)));
+    }
+
+    split find_split(const build_item* items, std::size_t n, const aabb& centroids)
+    {
+        real low[3], scale[3];
+        for (int axis = 0; axis < 3; ++axis) {
+            low[axis] = centroids.lo[axis];
+            const real extent = centroids.hi[axis] - low[axis];
+            scale[axis] = extent > 0 ? real(bin_count_) / extent : real(0); // 0: all in bin 0, never split
+            for (bin& b : bins_[axis])
+                b = bin{};
+        }
+        for (std::size_t i = 0; i < n; ++i) { // one pass, three axes
+            const build_item& item = items[i];
+            for (int axis = 0; axis < 3; ++axis) {
+                bin& b = bins_[axis][bin_of(item.centroid[axis], low[axis], scale[axis])];
+                b.box.grow(item.box);
+                ++b.count;
+            }
+        }
+        split best;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (scale[axis] == 0)
+                continue;
+            const std::vector<bin>& bins = bins_[axis];
+            // sweep from the right: right_cost_[s] = A_R N_R for the split before bin s
+            aabb accumulated;
+            std::size_t on_right = 0;
+            for (std::size_t s = bin_count_ - 1; s > 0; --s) {
+                accumulated.grow(bins[s].box);
+                on_right += bins[s].count;
+                right_box_[s] = accumulated;
+                right_cost_[s] = half_area(accumulated) * tests(on_right);
+            }
+            aabb left;
+            std::size_t on_left = 0;
+            for (std::size_t s = 1; s < bin_count_; ++s) {
+                left.grow(bins[s - 1].box);
+                on_left += bins[s - 1].count;
+                if (on_left == 0 || on_left == n)
+                    continue;
+                const real cost = half_area(left) * tests(on_left) + right_cost_[s];
+                if (best.axis < 0 || cost < best.cost) {
+                    best.axis = axis;
+                    best.bin = s;
+                    best.cost = cost;
+                    best.left = left;
+                    best.right = right_box_[s];
+                }
+            }
+        }
+        return best;
+    }
+
+    binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)
+    {
+        // two pieces of one primitive (spatial splits) in one leaf: keep one;
+        // the rest of the range stays in items_, referenced by no leaf
+        const auto first = items_.begin() + std::ptrdiff_t(begin);
+        std::sort(first, first + std::ptrdiff_t(n),
+                  [](const build_item& x, const build_item& y) { return x.index < y.index; });
+        n = std::size_t(std::unique(first, first + std::ptrdiff_t(n),
+                                    [](const build_item& x, const build_item& y) { return x.index == y.index; }) -
+                        first);
+        sah_cost += double(options_.intersection_cost) * double(area) * double(tests(n));
+        binary_child c;
+        c.box = box;
+        c.index = std::uint32_t(begin);
+        c.count = std::uint32_t(n);
+        return c;
+    }
+
+    std::vector<build_item>& items_;
+    const bvh_options& options_;
+    int spare_threads_;
+    const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
+    std::size_t bin_count_;
+    std::vector<bin> bins_[3];
+    std::vector<real> right_cost_;
+    std::vector<aabb> right_box_;
+};
+
+} // namespace detail
+} // namespace rt

@@ -1,0 +1,335 @@
+// bvh/bvh.hpp - the fast path: a bounding volume hierarchy over packed
+// primitives, the engine behind rt::accelerator (accelerator.hpp).
+//
+// The course's group is a list searched from start to end (hit_list.hpp,
+// stage 04); with n shapes every ray pays n tests. A BVH puts the shapes in
+// nested boxes, so a ray that misses a box skips all of its shapes: about
+// log n box tests instead of n shape tests. The list and the BVH return the
+// same hits (replaces(): a smaller t wins, at an equal t the later primitive).
+//
+// The folder, one concept per header, in the order a build and a ray use them:
+//   packed.hpp          a primitive as traversal reads it; the flat list
+//   layout.hpp          4-wide nodes, four-triangle leaf blocks
+//   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
+//   build_options.hpp   bvh_options, bvh_stats, the binary tree
+//   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
+//   binned_builder.hpp  the binned SAH build (Wald 2007), on threads
+//   wide_collapse.hpp   the binary tree made 4-wide
+//   node_test.hpp       a ray against a node's four boxes; nearest child first
+//   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
+//   bvh.hpp             this file: build, then closest() and any()
+// What each choice bought, measured, is in docs/performance.md (experiment 6).
+//
+//     std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
+//     const rt::bvh tree(std::move(prims));
+//     rt::primitive_hit hit;
+//     if (tree.closest(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
+//     const bool blocked = tree.any(shadow_ray, 0, 1);
+//
+// Traversal keeps a fixed-size stack of children with their entry distances
+// (no allocation per ray) and skips an entry whose distance is beyond the
+// closest hit found meanwhile; any() returns at the first hit and pushes
+// children unsorted (their order cannot change its answer). The next child is
+// chosen by one jump on the 4-bit mask of children met, a switch over the 15
+// masks whose cases know their children at compile time (descend): on
+// coherent rays the jump is predicted and the next node loads before the box
+// test has finished.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "../aabb.hpp"
+#include "../error.hpp"
+#include "../ray.hpp"
+#include "../watertight.hpp"
+#include "binned_builder.hpp"
+#include "build_options.hpp"
+#include "layout.hpp"
+#include "leaf_test.hpp"
+#include "node_test.hpp"
+#include "packed.hpp"
+#include "wide_collapse.hpp"
+
+namespace rt {
+
+/// A BVH over packed primitives (see the top of this file). Built once; its
+/// queries are const and safe to run from many threads at once.
+class bvh {
+public:
+    bvh() = default;
+
+    /// Builds the hierarchy; the primitives are reordered into leaf order.
+    explicit bvh(std::vector<packed_primitive> prims, const bvh_options& options = {})
+        : prims_(std::move(prims))
+    {
+        stats_.primitives = prims_.size();
+        if (prims_.empty())
+            return;
+        if (prims_.size() >= std::size_t(leaf_flag))
+            throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(prims_.size()));
+        bvh_options used = options;
+        used.max_depth = std::max(1, std::min(used.max_depth, max_depth));
+        used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
+
+        std::vector<detail::build_item> items(prims_.size());
+        aabb scene_box;
+        for (std::size_t i = 0; i < prims_.size(); ++i) {
+            items[i].box = packed_bounds(prims_[i]);
+            items[i].centroid = items[i].box.center();
+            items[i].index = std::uint32_t(i);
+            scene_box.grow(items[i].box);
+        }
+        const int threads = used.threads > 0 ? used.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+        detail::binary_builder builder(items, used, threads - 1, prims_.data());
+        builder.nodes.reserve(prims_.size());
+        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(prims_.size()));
+        detail::binary_child root;
+        if (budget > 0) {
+            std::vector<detail::build_item> refs;
+            refs.swap(items);
+            items.reserve(refs.size() + budget);
+            root = builder.build_spatial(std::move(refs), scene_box, 0, detail::half_area(scene_box), budget);
+        } else {
+            root = builder.build(0, items.size(), scene_box, 0);
+        }
+        stats_.references = items.size();
+        stats_.spatial_splits = builder.spatial_splits;
+        const std::vector<detail::binary_node>& binary = builder.nodes;
+        const real root_area = detail::half_area(scene_box);
+        stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;
+        stats_.binary_nodes = binary.size();
+
+        nodes_.reserve(binary.size() / 2 + 1);
+        detail::wide_collapser(binary, nodes_, stats_).collapse(root, 0);
+        stats_.nodes = nodes_.size();
+
+        std::vector<packed_primitive> ordered(items.size());
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            ordered[i] = prims_[items[i].index];
+            has_spheres_ = has_spheres_ || (ordered[i].id & sphere_flag) != 0;
+        }
+        prims_ = std::move(ordered);
+
+        // each leaf's primitives as blocks of four, in the order the nodes
+        // meet the leaves (depth first); the leaf's reference becomes its
+        // first block, count stays its number of primitives
+        blocks_.reserve(prims_.size() / 2 + 1);
+        for (bvh_node& node : nodes_)
+            for (int c = 0; c < 4; ++c) {
+                if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
+                    continue;
+                const std::size_t first = node.child[c] & ~leaf_flag;
+                node.child[c] = leaf_flag | std::uint32_t(blocks_.size());
+                for (std::size_t done = 0; done < node.count[c]; done += 4)
+                    blocks_.push_back(pack_triangle_block(prims_.data(), first + done,
+                                                          std::min<std::size_t>(4, node.count[c] - done)));
+            }
+    }
+
+    /// The closest hit in [tmin, tmax] by replaces(), or false.
+    bool closest(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    {
+        return traverse<false, false>(r, tmin, tmax, best);
+    }
+
+    /// Whether anything is hit in [tmin, tmax]; stops at the first hit found.
+    bool any(const ray& r, real tmin, real tmax) const
+    {
+        primitive_hit unused;
+        return traverse<true, false>(r, tmin, tmax, unused);
+    }
+
+    /// closest() with the node and leaf tests done one value at a time (the
+    /// fallback where SSE is missing), for the tests to compare with closest().
+    bool closest_scalar(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    {
+        return traverse<false, true>(r, tmin, tmax, best);
+    }
+
+    /// any() one value at a time, as closest_scalar.
+    bool any_scalar(const ray& r, real tmin, real tmax) const
+    {
+        primitive_hit unused;
+        return traverse<true, true>(r, tmin, tmax, unused);
+    }
+
+    const std::vector<bvh_node>& nodes() const { return nodes_; }
+    /// The references in build order (bvh_stats::references of them): each
+    /// primitive, once per piece where spatial splits cut it.
+    const std::vector<packed_primitive>& primitives() const { return prims_; }
+    /// The leaves' primitives as blocks of four (a leaf's reference in
+    /// bvh_node::child is leaf_flag | its first block).
+    const std::vector<triangle_block>& blocks() const { return blocks_; }
+    const bvh_stats& stats() const { return stats_; }
+
+    /// Whether the node test runs in SSE registers (x86-64 and rt::real = float).
+    static constexpr bool uses_sse = detail::bvh_uses_sse;
+
+    /// The deepest binary tree built; a 4-wide node pushes at most 3 children,
+    /// so the traversal stack needs 3 entries per level.
+    static constexpr int max_depth = 60;
+    static constexpr int stack_size = 3 * max_depth + 4;
+
+private:
+    /// A child waiting on the traversal stack, with the distance where the ray enters it.
+    struct entry {
+        std::uint32_t child, count;
+        real tnear;
+    };
+
+    /// The children met (bit c of `mask`, known at compile time) of `node`:
+    /// enter one, push the others. Any hit: the first met is entered and the
+    /// others pushed unsorted, since any hit ends the search whatever the
+    /// order (sorting them costs shadow rays more than it saves:
+    /// docs/performance.md, experiment 6). Closest hit: nearest first; one child is entered,
+    /// two are ordered by a select, not a branch (their order is a coin toss on
+    /// incoherent rays), three or four are ranked by order_children, without a
+    /// branch either: three entries are always written and top moves past the
+    /// n - 1 met.
+    template <int mask, bool any_hit>
+    static void descend(const bvh_node& node, const real tnear[4], entry* stack, int& top, std::uint32_t& child,
+                        std::uint32_t& count)
+    {
+        constexpr int first = detail::lowest_bit[mask];
+        constexpr int rest = mask & (mask - 1);
+        if constexpr (rest == 0) {
+            child = node.child[first];
+            count = node.count[first];
+        } else if constexpr (any_hit) {
+            for (int c = 0; c < 4; ++c)
+                if (c != first && (mask & (1 << c)))
+                    stack[top++] = entry{node.child[c], node.count[c], tnear[c]};
+            child = node.child[first];
+            count = node.count[first];
+        } else if constexpr ((rest & (rest - 1)) == 0) {
+            constexpr int second = detail::lowest_bit[rest];
+            const bool swap = tnear[second] < tnear[first];
+            const int near_child = swap ? second : first, far_child = swap ? first : second;
+            stack[top++] = entry{node.child[far_child], node.count[far_child], tnear[far_child]};
+            child = node.child[near_child];
+            count = node.count[near_child];
+        } else {
+            int order[4];
+            const int n = detail::order_children(mask, tnear, order);
+            for (int i = 3; i > 0; --i) {
+                const int c = order[i];
+                stack[top] = entry{node.child[c], node.count[c], tnear[c]};
+                top += i < n ? 1 : 0;
+            }
+            child = node.child[order[0]];
+            count = node.count[order[0]];
+        }
+    }
+
+    template <bool any_hit, bool scalar>
+    bool traverse(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    {
+        if (nodes_.empty())
+            return false;
+        const detail::node_ray nr = detail::make_node_ray(r);
+        const watertight_ray wr = make_watertight_ray(r);
+        const detail::leaf_ray lr = detail::make_leaf_ray(wr);
+        entry stack[stack_size];
+        int top = 0;
+        bool found = false;
+        real closest_t = tmax; // a hit must have t <= closest_t: tmax, then the closest hit so far
+        std::uint32_t child = 0, count = 0; // the root
+        for (;;) {
+            if (!(child & leaf_flag)) {
+                const bvh_node& node = nodes_[child];
+                real tnear[4];
+                const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
+                                        : detail::intersect_children(node, nr, tmin, closest_t, tnear);
+                // One indirect branch on the mask (a jump table): each case
+                // knows at compile time which children it enters, so on
+                // coherent rays, where the branch is predicted, the processor
+                // starts loading the next node before the box test is done,
+                // and on incoherent rays a visit costs at most one misprediction.
+                switch (mask) {
+                case 0: break;
+                case 1: descend<1, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 2: descend<2, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 3: descend<3, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 4: descend<4, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 5: descend<5, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 6: descend<6, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 7: descend<7, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 8: descend<8, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 9: descend<9, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 10: descend<10, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 11: descend<11, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 12: descend<12, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 13: descend<13, any_hit>(node, tnear, stack, top, child, count); continue;
+                case 14: descend<14, any_hit>(node, tnear, stack, top, child, count); continue;
+                default: descend<15, any_hit>(node, tnear, stack, top, child, count); continue;
+                }
+            } else {
+                // a leaf: its blocks of four, each tested at once
+                // (leaf_test.hpp); a block's hits are taken by replaces(),
+                // so the closest hit does not depend on the order of the lanes
+                const triangle_block* block = blocks_.data() + (child & ~leaf_flag);
+                for (std::uint32_t done = 0; done < count; done += 4, ++block) {
+                    triangle_hit hits[4];
+                    int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
+                                      : detail::intersect_block(*block, lr, wr, tmin, closest_t, hits);
+                    if (mask != 0 && any_hit)
+                        return true;
+                    for (int lane = 0; mask != 0; ++lane, mask >>= 1) {
+                        if (!(mask & 1))
+                            continue;
+                        const primitive_hit h{hits[lane].t, hits[lane].b0, hits[lane].b1, hits[lane].b2,
+                                              block->id[lane], &block->v[0][lane], 4};
+                        if (!found || replaces(h, best)) {
+                            best = h;
+                            found = true;
+                            closest_t = h.t;
+                        }
+                    }
+                    if (!has_spheres_) // most scenes: no need to look at the ids
+                        continue;
+                    for (int spheres = detail::sphere_lanes(*block), lane = 0; spheres != 0; ++lane, spheres >>= 1) {
+                        if (!(spheres & 1))
+                            continue;
+                        packed_primitive p{{0, 0, 0, 0, 0, 0, 0, 0, 0}, block->id[lane]};
+                        for (int j = 0; j < 4; ++j)
+                            p.v[j] = block->v[j][lane];
+                        primitive_hit h;
+                        if (intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
+                            best = h;
+                            if (any_hit)
+                                return true;
+                            found = true;
+                            closest_t = h.t;
+                        }
+                    }
+                }
+            }
+            // the next entry on the stack that can still hold a hit at t <= closest_t
+            const real cut = closest_t * slab_far_factor;
+            for (;;) {
+                if (top == 0)
+                    return found;
+                const entry& e = stack[--top];
+                if (e.tnear <= cut) {
+                    child = e.child;
+                    count = e.count;
+                    break;
+                }
+            }
+        }
+    }
+
+    std::vector<packed_primitive> prims_;
+    std::vector<bvh_node> nodes_;
+    std::vector<triangle_block> blocks_;
+    bool has_spheres_ = false;
+    bvh_stats stats_;
+};
+
+} // namespace rt

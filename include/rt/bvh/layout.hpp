@@ -1,0 +1,75 @@
+// bvh/layout.hpp - how the tree sits in memory: 4-wide nodes and leaf blocks.
+//
+// Why this layout (the measurements are in docs/performance.md, experiment 6):
+//  - A node holds the boxes of its four children, not its own box (4-wide BVHs:
+//    Wald, Benthin, Boulos 2008; Dammertz, Hanika, Keller 2008): one visit tests
+//    four boxes, and a ray visits about half the nodes of a binary tree.
+//  - The boxes are stored plane by plane, bounds[lo x / hi x / lo y / ...][child],
+//    so one 4-wide instruction treats the same plane of all four children.
+//    128 bytes in float: two cache lines, aligned.
+//  - A child is an inner node (its index) or a leaf (leaf_flag | its first
+//    block, and a count): leaves cost no node of their own. Nodes are stored
+//    flat, depth first.
+//  - A leaf's triangles are stored four by four as a structure of arrays
+//    (triangle_block, 160 bytes), the corners themselves rather than indices,
+//    so one SIMD step treats four triangles and a block is one sweep of
+//    consecutive cache lines. An unused lane is NaN, which every test refuses.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+
+#include "../config.hpp"
+#include "packed.hpp"
+
+namespace rt {
+
+/// Up to four primitives of one leaf as the SIMD leaf test reads them (see the
+/// top of this file): the triangles' corners as a structure of arrays,
+/// v[3 corner + axis][lane] (row 0 is a.x of the four triangles, row 4 b.y),
+/// so that one 4-wide load gives the same coordinate of four triangles, and
+/// their ids (packed_primitive::id). A sphere's lane holds its centre and
+/// radius in rows 0 to 3, NaN in the others, and sphere_flag in its id, the
+/// sign bit of the lane (one movemask finds the spheres of a block). A lane
+/// that a leaf does not fill is NaN with id 0. NaN corners give a NaN t, which
+/// the range test refuses, so the triangle test needs no mask of its own.
+/// 160 bytes in float, the size of four packed_primitive.
+struct alignas(32) triangle_block {
+    real v[9][4];
+    std::uint32_t id[4];
+};
+
+/// The block of prims[first, first + n), n <= 4.
+inline triangle_block pack_triangle_block(const packed_primitive* prims, std::size_t first, std::size_t n)
+{
+    triangle_block b;
+    for (int j = 0; j < 9; ++j)
+        for (int lane = 0; lane < 4; ++lane)
+            b.v[j][lane] = std::numeric_limits<real>::quiet_NaN();
+    for (std::size_t lane = 0; lane < 4; ++lane) {
+        b.id[lane] = 0;
+        if (lane >= n)
+            continue;
+        const packed_primitive& p = prims[first + lane];
+        b.id[lane] = p.id;
+        for (int j = 0; j < ((p.id & sphere_flag) ? 4 : 9); ++j)
+            b.v[j][lane] = p.v[j];
+    }
+    return b;
+}
+
+/// One 4-wide node (see the top of this file): the boxes of up to four
+/// children, plane by plane, and their references. 128 bytes in float.
+struct alignas(64) bvh_node {
+    /// bounds[2 k][c] = lo of child c on axis k, bounds[2 k + 1][c] = hi; an
+    /// unused child has the empty box lo = +inf, hi = -inf, which no ray meets.
+    real bounds[6][4];
+    std::uint32_t child[4];  ///< an inner child's node index, or leaf_flag | its first primitive
+    std::uint32_t count[4];  ///< a leaf's number of primitives (0 for inner children)
+};
+
+/// Set in bvh_node::child for a leaf.
+constexpr std::uint32_t leaf_flag = 0x80000000u;
+
+} // namespace rt

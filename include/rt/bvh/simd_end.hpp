@@ -1,0 +1,6 @@
+// bvh/simd_end.hpp - closes the SIMD section simd_begin.hpp opened: the
+// macros it defined go, so no fast-path macro reaches an includer.
+// (No #pragma once: each section closes anew.)
+
+#undef RT_BVH_SSE
+#undef RT_BVH_AVX
