@@ -12,6 +12,11 @@
 //              Its hit record is rt's own (rt::fill_triangle_record) at
 //              Embree's hit, from Embree's barycentrics: the point, its
 //              rounding error bound and rt::triangle_normal;
+//   shadow-surface  the same lights from the same hits, but as a simple
+//              tracer sends them: from the hit point o + t d itself (Embree's
+//              t, no offset), towards the light, the direction not normalised
+//              (t = 1 at the light), traced in [1e-4, 1]: every ray starts on
+//              a surface and only t_min keeps it off its own triangle;
 //   incoherent from uniform random points of the bounding sphere to uniform
 //              random points of the box.
 // rt uses its scene-level accelerator (rt::accelerator, kind bvh: closest_hit
@@ -55,6 +60,7 @@ constexpr float infinity = std::numeric_limits<float>::infinity();
 struct ray_set {
     std::string name;
     bool shadow = false;  ///< any hit (occlusion) instead of closest hit
+    float tmin = 0;       ///< every ray's segment starts here
     std::vector<rt::ray> rays;
     std::vector<float> tmax;
     std::vector<unsigned> source;  ///< shadow rays: the triangle the ray starts on
@@ -105,12 +111,12 @@ public:
 
     double build_seconds() const { return build_seconds_; }
 
-    float closest(const rt::ray& r, float tmax) const
+    float closest(const rt::ray& r, float tmin, float tmax) const
     {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit query;
-        set_ray(query.ray, r, tmax);
+        set_ray(query.ray, r, tmax, tmin);
         query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(scene_, &context, &query);
@@ -118,20 +124,21 @@ public:
     }
 
     /// The closest hit's t, triangle and geometric normal (unit, not oriented).
-    bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal) const
+    bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal,
+                             float tmin = 0) const
     {
         float u = 0, v = 0;
-        return closest_with_normal(r, tmax, t, triangle, normal, u, v);
+        return closest_with_normal(r, tmax, t, triangle, normal, u, v, tmin);
     }
 
     /// The same, with Embree's barycentrics: the hit is (1 - u - v) v0 + u v1 + v v2.
     bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, vec3& normal, float& u,
-                             float& v) const
+                             float& v, float tmin = 0) const
     {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit query;
-        set_ray(query.ray, r, tmax);
+        set_ray(query.ray, r, tmax, tmin);
         query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(scene_, &context, &query);
@@ -145,18 +152,18 @@ public:
         return true;
     }
 
-    bool occluded(const rt::ray& r, float tmax) const
+    bool occluded(const rt::ray& r, float tmin, float tmax) const
     {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRay query;
-        set_ray(query, r, tmax);
+        set_ray(query, r, tmax, tmin);
         rtcOccluded1(scene_, &context, &query);
         return query.tfar < 0; // Embree sets tfar = -inf on a hit
     }
 
 private:
-    static void set_ray(RTCRay& out, const rt::ray& r, float tmax)
+    static void set_ray(RTCRay& out, const rt::ray& r, float tmax, float tmin = 0)
     {
         out.org_x = float(r.origin.x);
         out.org_y = float(r.origin.y);
@@ -164,7 +171,7 @@ private:
         out.dir_x = float(r.direction.x);
         out.dir_y = float(r.direction.y);
         out.dir_z = float(r.direction.z);
-        out.tnear = 0;
+        out.tnear = tmin;
         out.tfar = tmax;
         out.time = 0;
         out.mask = ~0u;
@@ -251,6 +258,27 @@ void add_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& e
             continue;
         shadow.rays.push_back(rt::spawn_ray_to(rec, light));
         shadow.tmax.push_back(float(real(1) - rt::shadow_epsilon));
+        shadow.source.push_back(triangle);
+    }
+}
+
+/// Shadow rays from the hits of `from` (found by Embree) towards `light` as a
+/// simple tracer sends them: from o + t d itself, the direction light - origin
+/// (t = 1 at the light, not normalised); the set's tmin (1e-4) is all that
+/// keeps a ray off the triangle it starts on.
+void add_surface_shadow_rays(ray_set& shadow, const ray_set& from, const embree_scene& embree, const vec3& light)
+{
+    for (const rt::ray& r : from.rays) {
+        float t = 0;
+        unsigned triangle = 0;
+        vec3 n;
+        if (!embree.closest_with_normal(r, infinity, t, triangle, n))
+            continue;
+        const vec3 origin = r.origin + real(t) * r.direction;
+        if (!(glm::length(light - origin) > 0))
+            continue;
+        shadow.rays.push_back(rt::ray{origin, light - origin});
+        shadow.tmax.push_back(1.0f);
         shadow.source.push_back(triangle);
     }
 }
@@ -403,6 +431,13 @@ int main(int argc, char** argv)
             add_shadow_rays(shadow, sets[1], embree, m.geometry,
                             centre + vec3(real(0.1), real(0.35), real(0.05)) * m.box.extent());
             sets.push_back(std::move(shadow));
+            ray_set surface;
+            surface.name = "shadow-surface";
+            surface.shadow = true;
+            surface.tmin = 1e-4f;
+            add_surface_shadow_rays(surface, sets[0], embree, centre + real(1.5) * radius * glm::normalize(vec3(-0.4, 1, 0.6)));
+            add_surface_shadow_rays(surface, sets[1], embree, centre + vec3(real(0.1), real(0.35), real(0.05)) * m.box.extent());
+            sets.push_back(std::move(surface));
             sets.push_back(incoherent(m, incoherent_count));
 
             for (const ray_set& set : sets) {
@@ -414,23 +449,23 @@ int main(int argc, char** argv)
                         double t;
                         if (set.shadow)
                             t = time_set(set, threads, 1, rt_answer, [&](const rt::ray& r, float tmax) {
-                                return accel.any_hit(r, real(0), real(tmax)) ? 0.0f : infinity;
+                                return accel.any_hit(r, real(set.tmin), real(tmax)) ? 0.0f : infinity;
                             });
                         else
                             t = time_set(set, threads, 1, rt_answer, [&](const rt::ray& r, float tmax) {
                                 rt::hit_record rec;
-                                return accel.closest_hit(r, real(0), real(tmax), rec) ? float(rec.t) : infinity;
+                                return accel.closest_hit(r, real(set.tmin), real(tmax), rec) ? float(rec.t) : infinity;
                             });
                         rt_seconds = k == 0 ? t : std::min(rt_seconds, t);
 #endif
                         double e;
                         if (set.shadow)
                             e = time_set(set, threads, 1, embree_answer, [&](const rt::ray& r, float tmax) {
-                                return embree.occluded(r, tmax) ? 0.0f : infinity;
+                                return embree.occluded(r, set.tmin, tmax) ? 0.0f : infinity;
                             });
                         else
                             e = time_set(set, threads, 1, embree_answer, [&](const rt::ray& r, float tmax) {
-                                return embree.closest(r, tmax);
+                                return embree.closest(r, set.tmin, tmax);
                             });
                         embree_seconds = std::min(embree_seconds, e);
                     }
@@ -460,7 +495,7 @@ int main(int argc, char** argv)
                             float t = 0;
                             unsigned triangle = 0;
                             vec3 normal;
-                            if (!embree.closest_with_normal(set.rays[k], set.tmax[k], t, triangle, normal))
+                            if (!embree.closest_with_normal(set.rays[k], set.tmax[k], t, triangle, normal, set.tmin))
                                 continue;
                             if (triangle == set.source[k]) {
                                 ++embree_self;

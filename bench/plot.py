@@ -265,8 +265,9 @@ def plot_embree(data, charts):
     notes, rows = read(path)
     one = [r for r in rows if r["threads"] == "1"]
     meshes = list(dict.fromkeys(r["mesh"] for r in one))
-    sets = ["outside", "centre", "shadow", "incoherent"]
-    colours = {"outside": "tab:blue", "centre": "tab:orange", "shadow": "tab:gray", "incoherent": "tab:red"}
+    sets = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
+    colours = {"outside": "tab:blue", "centre": "tab:orange", "shadow": "tab:gray", "shadow-surface": "tab:olive",
+               "incoherent": "tab:red"}
     builds = {}
     build_path = os.path.join(data, "embree_build.csv")
     if os.path.exists(build_path):
@@ -433,12 +434,12 @@ def write_tables(data, charts):
                 num(b["embree_build_seconds_all_threads"]), num(b["ratio_rt_over_embree_1_thread"])))
         out.append("")
         out.append("Targets (single thread): closest hit >= 0.5x Embree on the outside, centre and incoherent sets, "
-                   "any hit >= 0.5x on the shadow set, build <= 3x.\n")
-        out.append("| mesh | outside | centre | incoherent | shadow | build |")
-        out.append("|---|---|---|---|---|---|")
+                   "any hit >= 0.5x on the shadow sets, build <= 3x.\n")
+        out.append("| mesh | outside | centre | incoherent | shadow | shadow-surface | build |")
+        out.append("|---|---|---|---|---|---|---|")
         for m in TARGET_MESHES:
             cells = []
-            for s in ("outside", "centre", "incoherent", "shadow"):
+            for s in ("outside", "centre", "incoherent", "shadow", "shadow-surface"):
                 match = [r for r in rows if r["mesh"] == m and r["set"] == s and r["threads"] == "1"]
                 if not match:
                     cells.append("-")
