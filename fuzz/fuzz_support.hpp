@@ -15,7 +15,7 @@
 #include <system_error>
 
 #include <rt/error.hpp>
-#include <rt/scene_loader.hpp> // rt::detail::utf8_length
+#include <rt/text_file.hpp> // rt::detail::utf8_length
 
 namespace fuzz {
 

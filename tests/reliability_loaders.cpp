@@ -25,6 +25,7 @@
 #include <rt/image_io.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/scene_loader.hpp>
+#include <rt/text_file.hpp>
 
 namespace {
 

@@ -22,6 +22,7 @@
 #include "config.hpp"
 #include "error.hpp"
 #include "scene_statement.hpp"
+#include "text_line.hpp"
 #include "vec.hpp"
 
 namespace rt {

@@ -34,6 +34,7 @@
 #include "obj_loader.hpp"
 #include "scene.hpp"
 #include "scene_statement.hpp"
+#include "text_file.hpp"
 
 namespace rt {
 

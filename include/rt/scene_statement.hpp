@@ -1,8 +1,8 @@
 // scene_statement.hpp - the words of a scene file's line (stage 01).
 //
-// A scene file (docs/scene-format.md) is read a line at a time: tokenize splits
-// a line into words and "quoted strings", and a statement reads them left to
-// right, each reader naming what it expects so that a problem becomes one line
+// A scene file (docs/scene-format.md) is read a line at a time: tokenize
+// (text_line.hpp, the tokenizer every file shares) splits a line into words and
+// "quoted strings", and a statement reads them left to right, each reader naming what it expects so that a problem becomes one line
 //     file:line:col: expected <what>, found <what>; <hint>
 // The readers of the scene file (scene_loader.hpp) and of the camera
 // statement (camera_statement.hpp, the stage-01 exercise) both use it:
@@ -26,15 +26,10 @@
 
 #include "config.hpp"
 #include "error.hpp"
+#include "text_line.hpp"
 #include "vec.hpp"
 
 namespace rt {
-
-/// One word of a line and the column (from 1) where it starts.
-struct token {
-    std::string text;
-    int column = 0;
-};
 
 /// The length of the shortest edit from a to b (Levenshtein), for "did you mean".
 inline std::size_t edit_distance(const std::string& a, const std::string& b)
@@ -122,28 +117,25 @@ public:
         return tokens_[next_++].text;
     }
 
-    /// A finite number (NaN, inf and numbers beyond rt::real's range are errors).
+    /// A finite number (NaN, inf and numbers beyond rt::real's range are
+    /// errors), read as text_line::number reads one.
     real number(const std::string& what)
     {
         if (done())
             throw unexpected("a number for " + what);
         const std::string& text = peek();
+        const double largest = double(std::numeric_limits<real>::max());
         double value = 0;
-        const char* first = text.data();
-        const char* last = first + text.size();
-        if (!text.empty() && *first == '+')
-            ++first;
-        const auto [end, status] = std::from_chars(first, last, value);
-        if (status == std::errc() && end == last && !std::isfinite(value))
-            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
-        if (status == std::errc::result_out_of_range ||
-            (status == std::errc() && end == last && std::fabs(value) > double(std::numeric_limits<real>::max()))) {
-            std::ostringstream limit;
-            limit << std::numeric_limits<real>::max();
-            throw unexpected("a number for " + what + " within +-" + limit.str(), "use smaller units");
-        }
-        if (status != std::errc() || end != last)
+        switch (detail::read_number(text.data(), text.data() + text.size(), largest, value)) {
+        case detail::number_reading::not_a_number:
             throw unexpected("a number for " + what);
+        case detail::number_reading::not_finite:
+            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
+        case detail::number_reading::too_large:
+            throw unexpected("a number for " + what + " " + detail::within(largest), "use smaller units");
+        case detail::number_reading::fits:
+            break;
+        }
         ++next_;
         return real(value);
     }
@@ -226,109 +218,5 @@ private:
     int end_column_;
     std::size_t next_ = 1; // tokens_[0] is the keyword
 };
-
-namespace detail {
-
-/// The length of the well-formed UTF-8 sequence that starts at text[i], or 0
-/// when the bytes there are not one. The Unicode Standard, Version 15.0,
-/// sec. 3.9, Table 3-7 "Well-Formed UTF-8 Byte Sequences" (also RFC 3629, sec. 4).
-inline std::size_t utf8_length(const std::string& text, std::size_t i)
-{
-    const auto byte = [&](std::size_t k) {
-        return k < text.size() ? unsigned(static_cast<unsigned char>(text[k])) : 0u;
-    };
-    const auto in = [](unsigned b, unsigned low, unsigned high) { return b >= low && b <= high; };
-    const unsigned b0 = byte(i), b1 = byte(i + 1), b2 = byte(i + 2), b3 = byte(i + 3);
-    if (b0 < 0x80)
-        return 1;
-    if (in(b0, 0xC2, 0xDF))
-        return in(b1, 0x80, 0xBF) ? 2 : 0;
-    if (b0 == 0xE0)
-        return in(b1, 0xA0, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
-    if (in(b0, 0xE1, 0xEC) || in(b0, 0xEE, 0xEF))
-        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) ? 3 : 0;
-    if (b0 == 0xED)
-        return in(b1, 0x80, 0x9F) && in(b2, 0x80, 0xBF) ? 3 : 0;
-    if (b0 == 0xF0)
-        return in(b1, 0x90, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
-    if (in(b0, 0xF1, 0xF3))
-        return in(b1, 0x80, 0xBF) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
-    if (b0 == 0xF4)
-        return in(b1, 0x80, 0x8F) && in(b2, 0x80, 0xBF) && in(b3, 0x80, 0xBF) ? 4 : 0;
-    return 0;
-}
-
-/// Requires that text[from, to) is text: printable ASCII, tabs, or well-formed
-/// UTF-8 (for names and paths in other languages); control bytes and other
-/// bytes mean the file is not a scene file.
-inline void check_text(const std::string& text, std::size_t from, std::size_t to, const source_location& where)
-{
-    for (std::size_t i = from; i < to;) {
-        const unsigned char c = static_cast<unsigned char>(text[i]);
-        const std::size_t length = (c < 32 && c != '\t' && c != '\r') || c == 127 ? 0 : utf8_length(text, i);
-        if (length == 0 || i + length > to)
-            throw parse_error({where.file, where.line, int(i) + 1}, "plain text (ASCII or UTF-8)",
-                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
-        i += length;
-    }
-}
-
-/// Splits one line into tokens: words separated by blanks, "quoted strings"
-/// (for paths with spaces), and a '#' that starts a comment (which may hold
-/// anything but is not read).
-inline std::vector<token> tokenize(const std::string& text, const source_location& where)
-{
-    std::vector<token> tokens;
-    std::size_t i = 0;
-    while (i < text.size()) {
-        const unsigned char c = static_cast<unsigned char>(text[i]);
-        if (c == ' ' || c == '\t' || c == '\r') {
-            ++i;
-        } else if (c == '#') {
-            break;
-        } else if (c == '"') {
-            const std::size_t close = text.find('"', i + 1);
-            if (close == std::string::npos)
-                throw parse_error({where.file, where.line, int(i) + 1}, "a closing '\"'", "the end of the line");
-            check_text(text, i + 1, close, where);
-            tokens.push_back({text.substr(i + 1, close - i - 1), int(i) + 1});
-            i = close + 1;
-        } else {
-            const std::size_t start = i;
-            while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#')
-                ++i;
-            check_text(text, start, i, where);
-            tokens.push_back({text.substr(start, i - start), int(start) + 1});
-        }
-    }
-    return tokens;
-}
-
-/// Reads the next line of `in` into `text`, without its line break, but never
-/// more than `limit` + 1 characters, so that a file without line breaks cannot
-/// exhaust memory (the caller rejects a line longer than `limit`). A line ends
-/// at LF, CR LF or a lone CR (classic Mac OS files), so line numbers are right
-/// whichever a file uses. Returns false at the end of the input, as
-/// std::getline does.
-inline bool read_bounded_line(std::istream& in, std::string& text, std::size_t limit)
-{
-    text.clear();
-    char c = 0;
-    while (in.get(c)) {
-        if (c == '\n')
-            return true;
-        if (c == '\r') {
-            if (in.peek() == '\n')
-                in.get(c);
-            return true;
-        }
-        text += c;
-        if (text.size() > limit)
-            return true;
-    }
-    return !text.empty();
-}
-
-} // namespace detail
 
 } // namespace rt
