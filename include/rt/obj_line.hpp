@@ -99,14 +99,10 @@ public:
             throw unexpected(a_number() + " with an exponent from -400 to 400",
                              "no float needs more; tinyobjloader cannot read a longer exponent");
         double value = 0;
-        const char* first = next_ != end_ && *next_ == '+' ? next_ + 1 : next_;
-        const auto [end, status] = std::from_chars(first, p, value);
-        const bool overflow = status == std::errc::result_out_of_range && p != mantissa_end &&
-                              std::find(mantissa_end, p, '-') == p; // out of range with a positive exponent
-        if (overflow || (status == std::errc() && std::fabs(value) > largest_number())) {
-            throw unexpected(a_number() + " " + within(largest_number()), "use smaller units");
+        if (detail::read_number(next_, p, largest_number(), value) == detail::number_reading::too_large) {
+            const auto complaint = detail::complain(detail::number_reading::too_large, what, largest_number());
+            throw unexpected(complaint.expected, complaint.hint);
         }
-        (void)end;
     }
 
     /// Checks every word left on the line that is a number, or with `prefix`

@@ -126,15 +126,10 @@ public:
         const std::string& text = peek();
         const double largest = double(std::numeric_limits<real>::max());
         double value = 0;
-        switch (detail::read_number(text.data(), text.data() + text.size(), largest, value)) {
-        case detail::number_reading::not_a_number:
-            throw unexpected("a number for " + what);
-        case detail::number_reading::not_finite:
-            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
-        case detail::number_reading::too_large:
-            throw unexpected("a number for " + what + " " + detail::within(largest), "use smaller units");
-        case detail::number_reading::fits:
-            break;
+        const auto reading = detail::read_number(text.data(), text.data() + text.size(), largest, value);
+        if (reading != detail::number_reading::fits) {
+            const detail::number_complaint complaint = detail::complain(reading, what, largest);
+            throw unexpected(complaint.expected, complaint.hint);
         }
         ++next_;
         return real(value);

@@ -98,12 +98,26 @@ inline number_reading read_number(const char* first, const char* last, double la
     return magnitude > 0 ? number_reading::too_large : number_reading::fits;
 }
 
-/// The magnitude limit as a message shows it: "within +-3.40282e+38".
-inline std::string within(double largest)
+/// What a reader says of a word that is not a number it can store: the
+/// "expected" and the hint of its error (both readers say the same).
+struct number_complaint {
+    std::string expected, hint;
+};
+
+inline number_complaint complain(number_reading reading, const std::string& what, double largest)
 {
-    std::ostringstream text;
-    text << "within +-" << largest;
-    return text.str();
+    const std::string for_what = what.empty() ? std::string() : " for " + what;
+    switch (reading) {
+    case number_reading::not_finite:
+        return {"a finite number" + for_what, "NaN and inf are not allowed"};
+    case number_reading::too_large: {
+        std::ostringstream text;
+        text << "a number" << for_what << " within +-" << largest;
+        return {text.str(), "use smaller units"};
+    }
+    default:
+        return {"a number" + for_what, ""};
+    }
 }
 
 } // namespace detail
@@ -173,15 +187,10 @@ public:
             throw unexpected("a number for " + what);
         const char* stop = word_end();
         double value = 0;
-        switch (detail::read_number(next_, stop, largest, value)) {
-        case detail::number_reading::not_a_number:
-            throw unexpected("a number for " + what);
-        case detail::number_reading::not_finite:
-            throw unexpected("a finite number for " + what, "NaN and inf are not allowed");
-        case detail::number_reading::too_large:
-            throw unexpected("a number for " + what + " " + detail::within(largest), "use smaller units");
-        case detail::number_reading::fits:
-            break;
+        const auto reading = detail::read_number(next_, stop, largest, value);
+        if (reading != detail::number_reading::fits) {
+            const detail::number_complaint complaint = detail::complain(reading, what, largest);
+            throw unexpected(complaint.expected, complaint.hint);
         }
         if (move_on) {
             next_ = stop;
