@@ -192,8 +192,8 @@ void check_refused(const outcome& result, const std::map<std::string, std::strin
         CHECK(result.out.empty());
     CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
     for (const std::string& fragment : fragments) {
-        CAPTURE(fragment);
-        CHECK(result.err.find(fragment) != std::string::npos);
+        const bool said = result.err.find(fragment) != std::string::npos;
+        CHECK_MESSAGE(said, "expected the message to say: " << fragment);
     }
     const std::map<std::string, std::string> after = snapshot(folder);
     CAPTURE(listing(before));
@@ -343,6 +343,50 @@ TEST_CASE("every option before any work: an unknown output format is refused bef
         const auto before = snapshot(folder);
         check_refused(run(folder, command(name, "s.scene", "out.jpg")), before, folder,
                       {"out.jpg: expected an image extension .png, .ppm or .pfm, found '.jpg'"});
+    }
+}
+
+TEST_CASE("one option parser: every program words a command-line mistake alike, before any work")
+{
+    if (!programs_built())
+        return;
+    // stages/common/command_line.hpp: "option X: expected <what it takes>, found '<value>'; see --help"
+    struct mistake {
+        std::string name;
+        std::vector<std::string> arguments;
+        std::string fragment;
+    };
+    const std::vector<mistake> mistakes = {
+        {"stage01_load_scene", {"s.scene", "--pixel"}, "expected an option (--help), found '--pixel'; see --help"},
+        {"stage01_load_scene", {}, "expected a scene file, found none; see --help"},
+        {"stage02_generate_rays", {"s.scene", "s.scene"}, "expected one scene file, found also 's.scene'; see --help"},
+        {"stage02_generate_rays", {"s.scene", "--projection", "fisheye"},
+         "option --projection: expected perspective or orthographic, found 'fisheye'; see --help"},
+        {"stage03_sphere", {"s.scene", "--method", "exact"},
+         "option --method: expected textbook or stable, found 'exact'; see --help"},
+        {"stage04_triangle", {"s.scene", "--size", "800x0"},
+         "option --size (height): expected an integer from 1 to 16384, found '0'; see --help"},
+        {"stage05_shading", {"s.scene", "--pixel", "1"},
+         "option --pixel: expected two whole numbers I J (column from the left, row from the top), found the end"},
+        {"stage06_shadows", {"s.scene", "--epsilon", "-1e-4"},
+         "option --epsilon: expected a number in [0, 1e+30], found '-1e-4'; see --help"},
+        {"stage07_reflections", {"s.scene", "--max-depth", "65"},
+         "option --max-depth: expected an integer from 0 to 64, found '65'; see --help"},
+        {"stage08_output", {"s.scene", "--spp", "abc"},
+         "option --spp: expected an integer from 1 to 65536, found 'abc'; see --help"},
+        {"stage08_output", {"s.scene", "--bogus"}, "expected an option (-o, the render options"},
+        {"viewer", {"s.scene", "--timeout", "0"}, "option --timeout: expected a number in (0, 86400], found '0'; see --help"},
+    };
+    for (const mistake& m : mistakes) {
+        if (m.name == "viewer" && !fs::exists(program("viewer")))
+            continue;
+        CAPTURE(m.name);
+        const fs::path folder = scratch("option_" + m.name + "_" + std::to_string(&m - mistakes.data()));
+        write_file(folder / "s.scene", "image 8 6\nmesh missing.obj\n"); // read it and fail on the mesh
+        std::vector<std::string> argv = {program(m.name)};
+        argv.insert(argv.end(), m.arguments.begin(), m.arguments.end());
+        const auto before = snapshot(folder);
+        check_refused(run(folder, argv), before, folder, {m.name + ": " + m.fragment});
     }
 }
 

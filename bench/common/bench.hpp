@@ -29,6 +29,8 @@
 #include <rt/config.hpp>
 #include <rt/error.hpp>
 
+#include "command_line.hpp" // stages/common
+
 #ifndef RT_BENCH_FLAGS
 #define RT_BENCH_FLAGS "unknown"
 #endif
@@ -52,32 +54,31 @@ struct options {
     std::vector<std::string> extra;  ///< arguments the program reads itself
 };
 
+/// The benchmark's command line (stages/common/command_line.hpp, the parser
+/// every rt program uses); words that are not options go to `extra`. Exits 0
+/// after --help.
 inline options parse_options(int argc, char** argv, const char* usage)
 {
     options o;
-    for (int k = 0; k < argc; ++k)
-        o.command += (k ? " " : "") + std::string(argv[k]);
-    for (int k = 1; k < argc; ++k) {
-        const std::string a = argv[k];
-        auto value = [&]() -> std::string {
-            if (k + 1 >= argc)
-                throw rt::error("option " + a + ": expected a value after it, found the end of the command line");
-            return argv[++k];
-        };
+    stage::arguments args(argc, argv);
+    o.command = args.command();
+    const std::string help = std::string(usage) + "\n  --quick       tiny sizes (seconds, for CI)\n" +
+                             "  --out DIR     folder for the CSV (default .)\n" +
+                             "  --shared DIR  the shared test data (default " RT_BENCH_SHARED_DIR ")\n";
+    const auto operands = stage::read_operands(args, help, "--quick, --out, --shared", [&](const std::string& a) {
         if (a == "--quick")
             o.quick = true;
         else if (a == "--out")
-            o.out = value();
+            o.out = args.value_of(a);
         else if (a == "--shared")
-            o.shared = value();
-        else if (a == "--help" || a == "-h") {
-            std::cout << usage << "\n  --quick       tiny sizes (seconds, for CI)\n"
-                      << "  --out DIR     folder for the CSV (default .)\n"
-                      << "  --shared DIR  the shared test data (default " RT_BENCH_SHARED_DIR ")\n";
-            std::exit(0);
-        } else
-            o.extra.push_back(a);
-    }
+            o.shared = args.value_of(a);
+        else
+            return false;
+        return true;
+    });
+    if (!operands)
+        std::exit(0); // --help
+    o.extra = *operands;
     return o;
 }
 

@@ -32,15 +32,11 @@ int main(int argc, char** argv)
 {
     return stage::run("stage01_load_scene", [&] {
         stage::arguments args(argc, argv);
-        if (args.done())
-            throw rt::error("expected a scene file, found no argument; " + std::string("usage: stage01_load_scene SCENE"));
-        const std::string path = args.take();
-        if (path == "--help" || path == "-h") {
-            std::cout << usage;
-            return 0;
-        }
-        if (!args.done())
-            throw rt::error("expected one scene file, found also '" + args.peek() + "'; usage: stage01_load_scene SCENE");
+        const std::optional<std::string> scene_file =
+            stage::read_command_line(args, usage, "", [](const std::string&) { return false; });
+        if (!scene_file)
+            return 0; // --help
+        const std::string& path = *scene_file;
 
         rt::check_readable(path, "a scene file"); // the reason (errno) when it cannot be read
         const rt::scene s = stage::load_scene(path);

@@ -46,10 +46,7 @@ int main(int argc, char** argv)
                 } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
                     strict = true;
                 } else if (arg == "--projection") {
-                    projection = args.value_of("--projection");
-                    if (projection != "perspective" && projection != "orthographic")
-                        throw rt::error("--projection: expected perspective or orthographic, found '" + projection +
-                                        "'");
+                    projection = stage::parse_choice(arg, args.value_of(arg), {"perspective", "orthographic"});
                 } else if (arg == "--edge") {
                     edge_prefix = args.value_of("--edge");
                 } else {

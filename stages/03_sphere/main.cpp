@@ -121,11 +121,9 @@ int main(int argc, char** argv)
                 if (arg == "-o") {
                     prefix = args.value_of("-o");
                     if (prefix.empty())
-                        throw rt::error("-o: expected a file name prefix, found an empty string; see --help");
+                        throw stage::option_error(arg, "a file name prefix", prefix);
                 } else if (arg == "--method") {
-                    method = args.value_of("--method");
-                    if (method != "textbook" && method != "stable")
-                        throw rt::error("--method: expected textbook or stable, found '" + method + "'");
+                    method = stage::parse_choice(arg, args.value_of(arg), {"textbook", "stable"});
                 } else if (arg == "--pixel" || arg == "--pixel-json") {
                     stage::read_pixel(args, arg, pixel);
                 } else {

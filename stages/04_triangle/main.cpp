@@ -71,21 +71,6 @@ double seconds_since(clock_type::time_point start)
     return std::chrono::duration<double>(clock_type::now() - start).count();
 }
 
-int parse_int(const std::string& text, const std::string& what, int low, int high)
-{
-    std::size_t used = 0;
-    int value = 0;
-    try {
-        value = std::stoi(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || value < low || value > high)
-        throw rt::error(what + ": expected a whole number between " + std::to_string(low) + " and " +
-                        std::to_string(high) + ", found '" + text + "'");
-    return value;
-}
-
 bool ends_with(const std::string& text, const std::string& tail)
 {
     return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
@@ -187,16 +172,14 @@ int main(int argc, char** argv)
                 if (arg == "-o") {
                     output = args.value_of("-o");
                 } else if (arg == "--mode") {
-                    mode = args.value_of("--mode");
-                    if (mode != "normals" && mode != "geometric" && mode != "depth")
-                        throw rt::error("--mode: expected normals, geometric or depth, found '" + mode + "'");
+                    mode = stage::parse_choice(arg, args.value_of(arg), {"normals", "geometric", "depth"});
                 } else if (arg == "--size") {
-                    const std::string size = args.value_of("--size");
+                    const std::string size = args.value_of(arg);
                     const std::size_t x = size.find('x');
                     if (x == std::string::npos)
-                        throw rt::error("--size: expected WxH such as 800x600, found '" + size + "'");
-                    width = parse_int(size.substr(0, x), "--size width", 1, 16384);
-                    height = parse_int(size.substr(x + 1), "--size height", 1, 16384);
+                        throw stage::option_error(arg, "WxH such as 800x600", size);
+                    width = int(stage::parse_integer("--size (width)", size.substr(0, x), 1, 16384));
+                    height = int(stage::parse_integer("--size (height)", size.substr(x + 1), 1, 16384));
                 } else if (arg == "--accel") {
                     accel = args.value_of("--accel");
                     if (accel != "list" && accel != "groups")

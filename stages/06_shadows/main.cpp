@@ -33,19 +33,9 @@ int main(int argc, char** argv)
                 if (arg == "-o") {
                     output = args.value_of("-o");
                 } else if (arg == "--offset") {
-                    offset = args.value_of("--offset");
-                    if (offset != "robust" && offset != "fixed")
-                        throw rt::error("--offset: expected robust or fixed, found '" + offset + "'");
+                    offset = stage::parse_choice(arg, args.value_of(arg), {"robust", "fixed"});
                 } else if (arg == "--epsilon") {
-                    const std::string text = args.value_of("--epsilon");
-                    try {
-                        std::size_t used = 0;
-                        epsilon = rt::real(std::stod(text, &used));
-                        if (used != text.size() || !(epsilon >= 0))
-                            throw std::invalid_argument(text);
-                    } catch (const std::exception&) {
-                        throw rt::error("--epsilon: expected a non-negative number, found '" + text + "'");
-                    }
+                    epsilon = rt::real(stage::parse_number(arg, args.value_of(arg), 0, 1e30));
                 } else if (arg == "--pixel" || arg == "--pixel-json") {
                     stage::read_pixel(args, arg, pixel);
                 } else {

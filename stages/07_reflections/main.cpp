@@ -27,12 +27,7 @@ int main(int argc, char** argv)
                 if (arg == "-o") {
                     output = args.value_of("-o");
                 } else if (arg == "--max-depth") {
-                    const std::string text = args.value_of("--max-depth");
-                    const bool digits = !text.empty() && text.size() <= 2 &&
-                                        text.find_first_not_of("0123456789") == std::string::npos;
-                    if (!digits || std::stoi(text) > 64)
-                        throw rt::error("--max-depth: expected a whole number from 0 to 64, found '" + text + "'");
-                    max_depth = std::stoi(text);
+                    max_depth = int(stage::parse_integer(arg, args.value_of(arg), 0, 64));
                 } else if (arg == "--pixel" || arg == "--pixel-json") {
                     stage::read_pixel(args, arg, pixel);
                 } else {

@@ -68,50 +68,44 @@ struct settings {
     pattern_kind pattern = pattern_kind::none;
     std::optional<rt::crop_window> crop;
     bool quiet = false;
-    bool help = false;
     stage::pixel_request pixel;
 };
 
-settings read_arguments(stage::arguments& args)
+/// The settings of the command line; nullopt for --help (the usage is printed).
+std::optional<settings> read_arguments(stage::arguments& args)
 {
     settings s;
-    while (!args.done()) {
-        const std::string arg = args.take();
-        auto value = [&] { return args.value_of(arg); };
-        if (arg == "--help" || arg == "-h") {
-            s.help = true;
-        } else if (arg == "-o") {
-            s.output = value();
-        } else if (stage::read_render_option(args, arg, s.render)) {
-            // one of the options stage08_output shares with the viewer
-        } else if (arg == "--pattern") {
-            const std::string name = value();
-            if (name == "zoneplate")
-                s.pattern = pattern_kind::zoneplate;
-            else if (name == "edge")
-                s.pattern = pattern_kind::edge;
-            else
-                throw rt::error("option --pattern: expected zoneplate or edge, found " + stage::quoted(name) +
-                                "; see --help");
-        } else if (arg == "--crop") {
-            rt::crop_window c;
-            c.x0 = int(stage::parse_integer("--crop X0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.x1 = int(stage::parse_integer("--crop X1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.y0 = int(stage::parse_integer("--crop Y0", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            c.y1 = int(stage::parse_integer("--crop Y1", args.value_of("--crop (4 numbers: X0 X1 Y0 Y1)"), 0, 1 << 16));
-            s.crop = c;
-        } else if (arg == "--pixel" || arg == "--pixel-json") {
-            stage::read_pixel(args, arg, s.pixel);
-        } else if (arg == "--quiet" || arg == "-q") {
-            s.quiet = true;
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw rt::error("expected an option (see --help), found " + stage::quoted(arg));
-        } else if (s.render.input.empty()) {
-            s.render.input = arg;
-        } else {
-            throw rt::error("expected one scene or OBJ file, found also " + stage::quoted(arg) + "; see --help");
-        }
-    }
+    const std::optional<std::string> input = stage::read_command_line(
+        args, usage, "-o, the render options, --pattern, --crop, --quiet, --pixel, --pixel-json",
+        [&](const std::string& arg) {
+            if (arg == "-o") {
+                s.output = args.value_of(arg);
+            } else if (stage::read_render_option(args, arg, s.render)) {
+                // one of the options stage08_output shares with the viewer
+            } else if (arg == "--pattern") {
+                const std::string name = stage::parse_choice(arg, args.value_of(arg), {"zoneplate", "edge"});
+                s.pattern = name == "zoneplate" ? pattern_kind::zoneplate : pattern_kind::edge;
+            } else if (arg == "--crop") {
+                const std::string what = "--crop (4 numbers: X0 X1 Y0 Y1)";
+                rt::crop_window c;
+                c.x0 = int(stage::parse_integer("--crop X0", args.value_of(what), 0, 1 << 16));
+                c.x1 = int(stage::parse_integer("--crop X1", args.value_of(what), 0, 1 << 16));
+                c.y0 = int(stage::parse_integer("--crop Y0", args.value_of(what), 0, 1 << 16));
+                c.y1 = int(stage::parse_integer("--crop Y1", args.value_of(what), 0, 1 << 16));
+                s.crop = c;
+            } else if (arg == "--pixel" || arg == "--pixel-json") {
+                stage::read_pixel(args, arg, s.pixel);
+            } else if (arg == "--quiet" || arg == "-q") {
+                s.quiet = true;
+            } else {
+                return false;
+            }
+            return true;
+        },
+        "a scene or OBJ file", true);
+    if (!input)
+        return std::nullopt;
+    s.render.input = *input;
     return s;
 }
 
@@ -144,11 +138,10 @@ int main(int argc, char** argv)
 {
     return stage::run("stage08_output", [&] {
         stage::arguments args(argc, argv);
-        settings set = read_arguments(args);
-        if (set.help) {
-            std::cout << usage;
-            return 0;
-        }
+        const std::optional<settings> arguments = read_arguments(args);
+        if (!arguments)
+            return 0; // --help
+        settings set = *arguments;
         const stage::render_settings& render = set.render;
         if (render.input.empty() == (set.pattern == pattern_kind::none))
             throw rt::error(render.input.empty()

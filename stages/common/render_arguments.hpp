@@ -25,78 +25,6 @@
 
 namespace stage {
 
-inline std::string quoted(const std::string& text)
-{
-    return "'" + text + "'";
-}
-
-inline std::string number_text(double value)
-{
-    std::ostringstream out;
-    out << value;
-    return out.str();
-}
-
-/// A whole integer in [lo, hi], or a one-line error naming the option.
-inline long long parse_integer(const std::string& option, const std::string& text, long long lo, long long hi)
-{
-    std::size_t used = 0;
-    long long value = 0;
-    try {
-        value = std::stoll(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || value < lo || value > hi)
-        throw rt::error("option " + option + ": expected an integer from " + std::to_string(lo) + " to " +
-                        std::to_string(hi) + ", found " + quoted(text) + "; see --help");
-    return value;
-}
-
-inline std::uint64_t parse_seed(const std::string& text)
-{
-    std::size_t used = 0;
-    unsigned long long value = 0;
-    try {
-        if (!text.empty() && text[0] != '-')
-            value = std::stoull(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size())
-        throw rt::error("option --seed: expected an integer from 0 to 18446744073709551615, found " + quoted(text) +
-                        "; see --help");
-    return value;
-}
-
-/// A finite number in [lo, hi] (lo exclusive when `open_below`), or a one-line error.
-inline double parse_number(const std::string& option, const std::string& text, double lo, double hi, bool open_below = false)
-{
-    std::size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    const bool low_ok = open_below ? value > lo : value >= lo;
-    if (used == 0 || used != text.size() || !std::isfinite(value) || !low_ok || value > hi)
-        throw rt::error("option " + option + ": expected a number in " + (open_below ? "(" : "[") +
-                        number_text(lo) + ", " + number_text(hi) + "], found " + quoted(text) + "; see --help");
-    return value;
-}
-
-template <class Kind>
-Kind parse_name(const std::string& option, const std::string& text, std::optional<Kind> (*from_name)(const std::string&),
-                const std::string& choices)
-{
-    const std::optional<Kind> kind = from_name(text);
-    if (!kind)
-        throw rt::error("option " + option + ": expected one of " + choices + ", found " + quoted(text) +
-                        "; see --help");
-    return *kind;
-}
-
 /// The help lines of the shared options.
 inline constexpr const char* render_options_usage =
     "  --width W, --height H image size in pixels (default: the scene's)\n"
@@ -166,7 +94,7 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
         s.encoding.transfer = rt::transfer_kind::gamma;
         s.encoding.gamma = float(parse_number(arg, value(), 0, 10, true));
     } else if (arg == "--seed") {
-        s.seed = parse_seed(value());
+        s.seed = parse_seed(arg, value());
     } else if (arg == "--strict") {
         s.strict = true;
     } else if (arg == "--aov") {

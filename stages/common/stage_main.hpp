@@ -1,5 +1,6 @@
-// stage_main.hpp - what every stage program shares: argument reading and the
-// rule that any failure is one line on stderr and a non-zero exit.
+// stage_main.hpp - what every stage program shares: the command line
+// (command_line.hpp), --pixel, and the rule that any failure is one line on
+// stderr and a non-zero exit.
 #pragma once
 
 #include <cstdio>
@@ -15,61 +16,9 @@
 #include <rt/error.hpp>
 #include <rt/os_error.hpp>
 
+#include "command_line.hpp"
+
 namespace stage {
-
-/// The command line after the program name, read left to right.
-class arguments {
-public:
-    arguments(int argc, char** argv) : list_(argv + 1, argv + argc) {}
-
-    bool done() const { return next_ >= list_.size(); }
-    const std::string& peek() const { return list_[next_]; }
-    std::string take() { return list_[next_++]; }
-
-    /// The value after an option such as -o; an error if there is none.
-    std::string value_of(const std::string& option)
-    {
-        if (done())
-            throw rt::error("option " + option + ": expected a value after it, found the end of the command line; see --help");
-        return take();
-    }
-
-private:
-    std::vector<std::string> list_;
-    std::size_t next_ = 0;
-};
-
-/// The command line every stage program reads: one scene file and options.
-/// `option(arg)` consumes an option the program knows (reading its values
-/// from `args`) and returns true, false for one it does not know. --help and
-/// -h print `usage` and give nullopt (the program exits 0); an unknown option,
-/// a second file or no file at all is an rt::error naming what was expected,
-/// with `known` listing the options. Returns the scene file's path.
-/// `input` names the file in messages, with its article: "a scene file", "an OBJ or scene file".
-template <class Option>
-std::optional<std::string> read_command_line(arguments& args, const std::string& usage, const std::string& known,
-                                             Option&& option, const std::string& input = "a scene file")
-{
-    std::string scene_path;
-    while (!args.done()) {
-        const std::string arg = args.take();
-        if (arg == "--help" || arg == "-h") {
-            std::cout << usage;
-            return std::nullopt;
-        }
-        if (option(arg))
-            continue;
-        if (!arg.empty() && arg[0] == '-')
-            throw rt::error("expected an option (" + known + ", --help), found '" + arg + "'; see --help");
-        if (!scene_path.empty())
-            throw rt::error("expected one " + input.substr(input.find(' ') + 1) + ", found also '" + arg +
-                            "'; see --help");
-        scene_path = arg;
-    }
-    if (scene_path.empty())
-        throw rt::error("expected " + input + ", found none; see --help");
-    return scene_path;
-}
 
 /// --pixel I J or --pixel-json I J: the pixel whose story a program tells
 /// (pixel_story.hpp) instead of writing its image.
@@ -89,13 +38,16 @@ inline const char* pixel_help =
 /// Reads "I J" after `option` (--pixel or --pixel-json): two whole numbers >= 0.
 inline void read_pixel(arguments& args, const std::string& option, pixel_request& p)
 {
+    const char* const expected = "two whole numbers I J (column from the left, row from the top)";
     int values[2] = {0, 0};
     for (int& value : values) {
-        const std::string text = args.value_of(option);
+        if (args.done())
+            throw rt::error("option " + option + ": expected " + expected +
+                            ", found the end of the command line; see --help");
+        const std::string text = args.take();
         const bool digits = !text.empty() && text.size() <= 9 && text.find_first_not_of("0123456789") == std::string::npos;
         if (!digits)
-            throw rt::error(option + ": expected two whole numbers I J (column from the left, row from the top), found '" +
-                            text + "'; see --help");
+            throw option_error(option, expected, text);
         value = std::stoi(text);
     }
     p.wanted = true;

@@ -100,40 +100,40 @@ struct settings {
     std::string script;
     std::string script_name = "--script";
     double timeout = 0;
-    bool help = false;
 };
 
-settings read_arguments(stage::arguments& args)
+/// The settings of the command line; nullopt for --help (the usage is printed).
+std::optional<settings> read_arguments(stage::arguments& args)
 {
     settings s;
-    while (!args.done()) {
-        const std::string arg = args.take();
-        if (arg == "--help" || arg == "-h") {
-            s.help = true;
-        } else if (arg == "-o") {
-            s.output = args.value_of(arg);
-        } else if (stage::read_render_option(args, arg, s.render)) {
-            // shared with stage08_output
-        } else if (arg == "--script") {
-            s.script = args.value_of(arg);
-            if (!s.script.empty() && s.script[0] == '@') {
-                s.script_name = s.script.substr(1);
-                std::ifstream in(s.script_name, std::ios::binary);
-                if (!in)
-                    throw rt::error(rt::source_location{s.script_name},
-                                    "expected a readable script file, found none; check the path after '@'");
-                s.script.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    const std::optional<std::string> input = stage::read_command_line(
+        args, usage, "-o, the render options, --script, --timeout",
+        [&](const std::string& arg) {
+            if (arg == "-o") {
+                s.output = args.value_of(arg);
+            } else if (stage::read_render_option(args, arg, s.render)) {
+                // shared with stage08_output
+            } else if (arg == "--script") {
+                s.script = args.value_of(arg);
+                if (!s.script.empty() && s.script[0] == '@') {
+                    s.script_name = s.script.substr(1);
+                    std::ifstream in(s.script_name, std::ios::binary);
+                    if (!in)
+                        throw rt::error(rt::source_location{s.script_name},
+                                        "expected a readable script file, found none; check the path after '@'");
+                    s.script.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+                }
+            } else if (arg == "--timeout") {
+                s.timeout = stage::parse_number(arg, args.value_of(arg), 0, 86400, true);
+            } else {
+                return false;
             }
-        } else if (arg == "--timeout") {
-            s.timeout = stage::parse_number(arg, args.value_of(arg), 0, 86400, true);
-        } else if (!arg.empty() && arg[0] == '-') {
-            throw rt::error("expected an option (see --help), found " + stage::quoted(arg));
-        } else if (s.render.input.empty()) {
-            s.render.input = arg;
-        } else {
-            throw rt::error("expected one scene or OBJ file, found also " + stage::quoted(arg) + "; see --help");
-        }
-    }
+            return true;
+        },
+        "a scene or OBJ file");
+    if (!input)
+        return std::nullopt;
+    s.render.input = *input;
     return s;
 }
 
@@ -700,13 +700,10 @@ int main(int argc, char** argv)
 {
     return stage::run("viewer", [&] {
         stage::arguments args(argc, argv);
-        const settings set = read_arguments(args);
-        if (set.help) {
-            std::cout << usage;
-            return 0;
-        }
-        if (set.render.input.empty())
-            throw rt::error("expected a scene file or an OBJ file, found none; see --help");
+        const std::optional<settings> arguments = read_arguments(args);
+        if (!arguments)
+            return 0; // --help
+        const settings& set = *arguments;
         rt::check_image_output(set.output); // the save key must not fail at the end
         // script errors before the window opens; the files a script writes are outputs too
         std::vector<std::filesystem::path> outputs{set.output};
