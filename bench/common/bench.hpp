@@ -1,5 +1,6 @@
 // bench.hpp - what every benchmark program shares: its command line, the
-// description of the machine, timing, a parallel loop and the CSV it writes.
+// description of the machine, timing, a parallel loop over blocks (rt::parallel_for)
+// and the CSV it writes.
 //
 // Every program takes
 //     --quick         tiny sizes (CI runs this so the benchmarks never rot)
@@ -11,7 +12,6 @@
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -22,12 +22,12 @@
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <rt/atomic_file.hpp>
 #include <rt/config.hpp>
 #include <rt/error.hpp>
+#include <rt/parallel.hpp>
 
 #include "command_line.hpp" // stages/common
 
@@ -130,8 +130,7 @@ inline std::string compiler()
 
 inline unsigned hardware_threads()
 {
-    const unsigned n = std::thread::hardware_concurrency();
-    return n ? n : 1;
+    return unsigned(rt::thread_count(0));
 }
 
 /// One line that says where the numbers come from.
@@ -173,30 +172,14 @@ double best_time(int repeats, Work&& work)
 }
 
 /// Calls body(begin, end) on blocks of [0, count) from `threads` threads
-/// (blocks handed out through an atomic counter, so a slow block does not
-/// hold the others back).
+/// (rt::parallel_for over the blocks: handed out through an atomic counter, so
+/// a slow block does not hold the others back).
 template <class Body>
 void parallel_blocks(std::size_t count, unsigned threads, std::size_t block, Body&& body)
 {
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-        for (;;) {
-            const std::size_t begin = next.fetch_add(block);
-            if (begin >= count)
-                return;
-            body(begin, std::min(count, begin + block));
-        }
-    };
-    if (threads <= 1) {
-        worker();
-        return;
-    }
-    std::vector<std::thread> pool;
-    for (unsigned k = 1; k < threads; ++k)
-        pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool)
-        t.join();
+    rt::parallel_for((count + block - 1) / block, int(threads), [&](std::size_t k, int) {
+        body(k * block, std::min(count, (k + 1) * block));
+    });
 }
 
 /// Rows of a CSV, written at the end in one go (atomically: a killed run

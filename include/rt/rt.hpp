@@ -32,6 +32,7 @@
 #include "obj_line.hpp"
 #include "obj_loader.hpp"
 #include "orient2d.hpp"
+#include "parallel.hpp"
 #include "offset.hpp"
 #include "progress.hpp"
 #include "radiance.hpp"

@@ -17,13 +17,12 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "../aabb.hpp"
 #include "../config.hpp"
+#include "../parallel.hpp"
 #include "../vec.hpp"
 #include "build_options.hpp"
 #include "packed.hpp"
@@ -265,23 +264,13 @@ private:
         const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
         spare_threads_ -= for_right + 1;
         binary_builder right_builder(right_items, options_, for_right, prims_);
-        std::exception_ptr failure;
-        std::thread worker([&] {
-            try {
+        // two items on two threads: the caller builds one, a new thread the other
+        parallel_for(2, 2, [&](std::size_t side, int) {
+            if (side == 0)
+                left = build_left();
+            else
                 right = build_right(right_builder);
-            } catch (...) {
-                failure = std::current_exception();
-            }
         });
-        try {
-            left = build_left();
-        } catch (...) {
-            worker.join();
-            throw;
-        }
-        worker.join();
-        if (failure)
-            std::rethrow_exception(failure);
         const bool own_items = &right_items != &items_;
         const std::uint32_t node_offset = std::uint32_t(nodes.size());
         const std::uint32_t item_offset = own_items ? std::uint32_t(items_.size()) : 0;

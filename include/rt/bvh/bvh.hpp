@@ -40,12 +40,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "../aabb.hpp"
 #include "../error.hpp"
+#include "../parallel.hpp"
 #include "../ray.hpp"
 #include "../watertight.hpp"
 #include "binned_builder.hpp"
@@ -85,7 +85,7 @@ public:
             items[i].index = std::uint32_t(i);
             scene_box.grow(items[i].box);
         }
-        const int threads = used.threads > 0 ? used.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+        const int threads = thread_count(used.threads);
         detail::binary_builder builder(items, used, threads - 1, prims_.data());
         builder.nodes.reserve(prims_.size());
         std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(prims_.size()));
