@@ -147,7 +147,7 @@ std::string stage01_output(const fs::path& root, const std::string& relative)
     out += formatted("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples,
                      s.max_depth);
     const rt::camera& cam = s.cam;
-    out += std::string("camera ") + (cam.kind == rt::projection::perspective ? "perspective" : "orthographic") + "\n";
+    out += std::string("camera ") + rt::name_of(cam.kind) + "\n";
     out += vector_line("eye", cam.eye) + vector_line("look_at", cam.look_at) + vector_line("up", cam.up);
     if (cam.plane)
         out += formatted("  window   l %g r %g b %g t %g (as given)\n", double(cam.plane->l), double(cam.plane->r),

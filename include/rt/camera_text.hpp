@@ -49,7 +49,7 @@ inline std::string exact_vector_text(const vec3& v)
 /// "perspective eye 0 1.6 6 look_at 0 0.7 0 up 0 1 0 fov 40 focal 1".
 inline std::string camera_statement(const camera& cam)
 {
-    std::string text = cam.kind == projection::perspective ? "perspective" : "orthographic";
+    std::string text = name_of(cam.kind);
     text += " eye " + detail::exact_vector_text(cam.eye);
     text += " look_at " + detail::exact_vector_text(cam.look_at);
     text += " up " + detail::exact_vector_text(cam.up);

@@ -1,5 +1,5 @@
 // enum_names.hpp - one way to name the values of rt's option enums (sampler,
-// filter, tone map, debug image, accelerator): a table of (value, name) pairs
+// filter, tone map, debug image, accelerator, projection): a table of (value, name) pairs
 // per enum, read both ways. Every command line and scene word goes through it,
 // so a name is spelled in exactly one place.
 //

@@ -43,7 +43,7 @@ int main(int argc, char** argv)
         std::printf("scene %s\n", path.c_str());
         std::printf("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples, s.max_depth);
         const rt::camera& cam = s.cam;
-        std::printf("camera %s\n", cam.kind == rt::projection::perspective ? "perspective" : "orthographic");
+        std::printf("camera %s\n", rt::name_of(cam.kind));
         print_vector("eye", cam.eye);
         print_vector("look_at", cam.look_at);
         print_vector("up", cam.up);

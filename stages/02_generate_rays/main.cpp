@@ -37,7 +37,8 @@ int main(int argc, char** argv)
 {
     return stage::run("stage02_generate_rays", [&] {
         stage::arguments args(argc, argv);
-        std::string output = "rays.png", projection, edge_prefix;
+        std::string output = "rays.png", edge_prefix;
+        std::optional<rt::projection> projection; // the scene's unless --projection says otherwise
         bool strict = false;
         const std::optional<std::string> scene_file = stage::read_command_line(
             args, usage, "-o, --projection, --edge, --strict", [&](const std::string& arg) {
@@ -46,7 +47,8 @@ int main(int argc, char** argv)
                 } else if (arg == "--strict") { // missing materials, polygons not simple: errors, not warnings
                     strict = true;
                 } else if (arg == "--projection") {
-                    projection = stage::parse_choice(arg, args.value_of(arg), {"perspective", "orthographic"});
+                    projection = stage::parse_name<rt::projection>(arg, args.value_of(arg), rt::projection_from_name,
+                                                                  rt::names_listed(rt::projection_names));
                 } else if (arg == "--edge") {
                     edge_prefix = args.value_of("--edge");
                 } else {
@@ -74,13 +76,11 @@ int main(int argc, char** argv)
         stage::check_input_and_outputs(scene_path, "a scene file", outputs);
 
         rt::scene s = stage::load_scene(scene_path, strict);
-        if (projection == "orthographic" && s.cam.kind != rt::projection::orthographic) {
-            s.cam.kind = rt::projection::orthographic;
-            s.cam.fov_degrees.reset();
+        if (projection && *projection != s.cam.kind) { // the other projection: its own defaults
+            s.cam.kind = *projection;
             s.cam.plane.reset();
-        } else if (projection == "perspective" && s.cam.kind != rt::projection::perspective) {
-            s.cam.kind = rt::projection::perspective;
-            s.cam.plane.reset();
+            if (s.cam.kind == rt::projection::orthographic)
+                s.cam.fov_degrees.reset();
         }
         rt::check_not_input(outputs, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
