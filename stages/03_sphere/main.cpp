@@ -118,21 +118,16 @@ int main(int argc, char** argv)
         stage::pixel_request pixel;
         const std::optional<std::string> scene_file =
             stage::read_command_line(args, usage, "-o, --method, --pixel, --pixel-json", [&](const std::string& arg) {
-                if (arg == "-o") {
-                    prefix = args.value_of("-o");
-                    if (prefix.empty())
-                        throw stage::option_error(arg, "a file name prefix", prefix);
-                } else if (arg == "--method") {
+                if (arg == "--method")
                     method = stage::parse_choice(arg, args.value_of(arg), {"textbook", "stable"});
-                } else if (arg == "--pixel" || arg == "--pixel-json") {
-                    stage::read_pixel(args, arg, pixel);
-                } else {
-                    return false;
-                }
+                else
+                    return stage::read_image_option(args, arg, prefix, pixel);
                 return true;
             });
         if (!scene_file)
             return 0; // --help
+        if (prefix.empty())
+            throw stage::option_error("-o", "a file name prefix", prefix);
         const std::string& scene_path = *scene_file;
         const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
                           normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",

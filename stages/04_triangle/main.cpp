@@ -153,9 +153,7 @@ int main(int argc, char** argv)
         const std::optional<std::string> input_file = stage::read_command_line(
             args, usage, "-o, --mode, --size, --accel, --compare, --pixel, --pixel-json, --strict",
             [&](const std::string& arg) {
-                if (arg == "-o") {
-                    output = args.value_of("-o");
-                } else if (arg == "--mode") {
+                if (arg == "--mode") {
                     mode = stage::parse_choice(arg, args.value_of(arg), {"normals", "geometric", "depth"});
                 } else if (arg == "--size") {
                     const std::string size = args.value_of(arg);
@@ -172,10 +170,8 @@ int main(int argc, char** argv)
                     strict = true;
                 } else if (arg == "--compare") {
                     compare = true;
-                } else if (arg == "--pixel" || arg == "--pixel-json") {
-                    stage::read_pixel(args, arg, pixel);
                 } else {
-                    return false;
+                    return stage::read_image_option(args, arg, output, pixel);
                 }
                 return true;
             },

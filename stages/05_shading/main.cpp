@@ -25,14 +25,10 @@ int main(int argc, char** argv)
                                   stage::pixel_help;
         const std::optional<std::string> scene_path =
             stage::read_command_line(args, usage, "-o, --falloff, --pixel, --pixel-json", [&](const std::string& arg) {
-                if (arg == "-o")
-                    output = args.value_of("-o");
-                else if (arg == "--falloff")
+                if (arg == "--falloff")
                     options.light_falloff = true;
-                else if (arg == "--pixel" || arg == "--pixel-json")
-                    stage::read_pixel(args, arg, pixel);
                 else
-                    return false;
+                    return stage::read_image_option(args, arg, output, pixel);
                 return true;
             });
         if (!scene_path)

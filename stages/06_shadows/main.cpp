@@ -30,17 +30,12 @@ int main(int argc, char** argv)
             stage::pixel_help;
         const std::optional<std::string> scene_path = stage::read_command_line(
             args, usage, "-o, --offset, --epsilon, --pixel, --pixel-json", [&](const std::string& arg) {
-                if (arg == "-o") {
-                    output = args.value_of("-o");
-                } else if (arg == "--offset") {
+                if (arg == "--offset")
                     offset = stage::parse_choice(arg, args.value_of(arg), {"robust", "fixed"});
-                } else if (arg == "--epsilon") {
+                else if (arg == "--epsilon")
                     epsilon = rt::real(stage::parse_number(arg, args.value_of(arg), 0, 1e30));
-                } else if (arg == "--pixel" || arg == "--pixel-json") {
-                    stage::read_pixel(args, arg, pixel);
-                } else {
-                    return false;
-                }
+                else
+                    return stage::read_image_option(args, arg, output, pixel);
                 return true;
             });
         if (!scene_path)

@@ -24,15 +24,10 @@ int main(int argc, char** argv)
                                   stage::pixel_help;
         const std::optional<std::string> scene_path = stage::read_command_line(
             args, usage, "-o, --max-depth, --pixel, --pixel-json", [&](const std::string& arg) {
-                if (arg == "-o") {
-                    output = args.value_of("-o");
-                } else if (arg == "--max-depth") {
+                if (arg == "--max-depth")
                     max_depth = int(stage::parse_integer(arg, args.value_of(arg), 0, 64));
-                } else if (arg == "--pixel" || arg == "--pixel-json") {
-                    stage::read_pixel(args, arg, pixel);
-                } else {
-                    return false;
-                }
+                else
+                    return stage::read_image_option(args, arg, output, pixel);
                 return true;
             });
         if (!scene_path)

@@ -78,9 +78,7 @@ std::optional<settings> read_arguments(stage::arguments& args)
     const std::optional<std::string> input = stage::read_command_line(
         args, usage, "-o, the render options, --pattern, --crop, --quiet, --pixel, --pixel-json",
         [&](const std::string& arg) {
-            if (arg == "-o") {
-                s.output = args.value_of(arg);
-            } else if (stage::read_render_option(args, arg, s.render)) {
+            if (stage::read_render_option(args, arg, s.render)) {
                 // one of the options stage08_output shares with the viewer
             } else if (arg == "--pattern") {
                 const std::string name = stage::parse_choice(arg, args.value_of(arg), {"zoneplate", "edge"});
@@ -93,12 +91,10 @@ std::optional<settings> read_arguments(stage::arguments& args)
                 c.y0 = int(stage::parse_integer("--crop Y0", args.value_of(what), 0, 1 << 16));
                 c.y1 = int(stage::parse_integer("--crop Y1", args.value_of(what), 0, 1 << 16));
                 s.crop = c;
-            } else if (arg == "--pixel" || arg == "--pixel-json") {
-                stage::read_pixel(args, arg, s.pixel);
             } else if (arg == "--quiet" || arg == "-q") {
                 s.quiet = true;
             } else {
-                return false;
+                return stage::read_image_option(args, arg, s.output, s.pixel);
             }
             return true;
         },

@@ -56,6 +56,19 @@ inline void read_pixel(arguments& args, const std::string& option, pixel_request
     p.row = values[1];
 }
 
+/// -o OUTPUT, --pixel I J and --pixel-json I J, which every program from stage
+/// 03 on reads: true when `arg` was one of them (and its values are read).
+inline bool read_image_option(arguments& args, const std::string& arg, std::string& output, pixel_request& pixel)
+{
+    if (arg == "-o")
+        output = args.value_of(arg);
+    else if (arg == "--pixel" || arg == "--pixel-json")
+        read_pixel(args, arg, pixel);
+    else
+        return false;
+    return true;
+}
+
 /// `message` as one line: every control character (a line break in a path or
 /// an argument) becomes '?', so a message is never split over two lines.
 inline std::string one_line(const std::string& message)
