@@ -41,6 +41,7 @@
 #include "pixel_sampling.hpp"
 #include "ray_image.hpp"
 #include "raytracer.hpp"
+#include "refraction.hpp"
 #include "render_setup.hpp"
 #include "renderer.hpp"
 #include "rounding.hpp"
