@@ -16,7 +16,8 @@
 //  - closest_hit_groups: the same hit as closest_hit_list on random scenes
 //    and rays (ties included), and counted item tests: a ray that misses the
 //    root box tests no item; along a row of spheres the nearest is tested
-//    first and the others are skipped.
+//    first and the others are skipped; on groups built by hand (judged
+//    apart from build_groups), the nearer child first and the tie rule.
 //
 // Only stage-04 exercises and unmarked library code are called.
 #include "rt_doctest.hpp"
@@ -399,4 +400,61 @@ TEST_CASE("a ray that misses the root box tests no item, and along a row of sphe
     tests = 0;
     CHECK_FALSE(rt::closest_hit_groups(none, rt::ray{vec3(0), vec3(1, 0, 0)}, 0, inf, rec, counting));
     CHECK(tests == 0);
+}
+
+TEST_CASE("the closest hit over groups built by hand: nearer child first, farther boxes skipped, a tie to the later item")
+{
+    // closest_hit_groups on its own, whatever build_groups does: three unit
+    // spheres on the x axis at x = 0, 10 and 20; the root's left child holds
+    // sphere 2 (the far one), its right child spheres 0 and 1, so a ray from
+    // the left must visit the right child first although it comes second
+    rt::scene s;
+    for (const real x : {real(0), real(10), real(20)})
+        s.shapes.emplace_back(rt::sphere{vec3(x, 0, 0), 1, 0});
+    rt::groups g;
+    g.items = rt::group_items(s);
+    g.order = {2, 0, 1};
+    const rt::aabb all = box_of(vec3(-1.5f, -1.5f, -1.5f), vec3(21.5f, 1.5f, 1.5f));
+    g.nodes = {rt::group_node{all, 0, 3, 1, 2},
+               rt::group_node{box_of(vec3(18.5f, -1.5f, -1.5f), vec3(21.5f, 1.5f, 1.5f)), 0, 1, 0, 0},
+               rt::group_node{box_of(vec3(-1.5f, -1.5f, -1.5f), vec3(11.5f, 1.5f, 1.5f)), 1, 2, 0, 0}};
+    std::vector<std::uint32_t> tested;
+    auto recording = [&](std::uint32_t i, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec) {
+        tested.push_back(i);
+        return rt::hit_group_item(s, g.items[i], r, tmin, tmax, rec);
+    };
+    rt::hit_record rec;
+    REQUIRE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, recording),
+                    "expected a hit: the ray along the x axis meets all three spheres");
+    CHECK_MESSAGE(rec.shape == 0, "expected sphere 0 (t = 9), the nearest, found shape " << rec.shape);
+    CHECK(rec.t == 9);
+    const bool far_child_skipped = std::find(tested.begin(), tested.end(), 2u) == tested.end();
+    CHECK_MESSAGE(far_child_skipped, "expected the left child (sphere 2, whose box starts at t = 28.5) never "
+                                     "visited: the right child's box starts nearer (t = 8.5), is visited first, "
+                                     "and its hit at t = 9 ends the search; "
+                                         << tested.size() << " item(s) tested");
+
+    INFO("tmax before every sphere: nothing hit, the record untouched");
+    tested.clear();
+    rec.t = -42;
+    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, 5, rec, recording));
+    CHECK(rec.t == -42);
+
+    INFO("two items at the same t (the same sphere twice, items 1 and 2): the later item in scene order wins");
+    rt::scene twice;
+    twice.shapes.emplace_back(rt::sphere{vec3(10, 0, 0), 1, 0});
+    twice.shapes.emplace_back(rt::sphere{vec3(0, 0, 0), 1, 0});
+    twice.shapes.emplace_back(rt::sphere{vec3(0, 0, 0), 1, 0});
+    rt::groups h;
+    h.items = rt::group_items(twice);
+    h.order = {2, 1, 0};
+    h.nodes = {rt::group_node{all, 0, 3, 1, 2},
+               rt::group_node{box_of(vec3(-1.5f, -1.5f, -1.5f), vec3(1.5f, 1.5f, 1.5f)), 0, 2, 0, 0},
+               rt::group_node{box_of(vec3(8.5f, -1.5f, -1.5f), vec3(11.5f, 1.5f, 1.5f)), 2, 1, 0, 0}};
+    auto hit_twice = [&](std::uint32_t i, const rt::ray& r, real tmin, real tmax, rt::hit_record& out) {
+        return rt::hit_group_item(twice, h.items[i], r, tmin, tmax, out);
+    };
+    REQUIRE(rt::closest_hit_groups(h, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, hit_twice));
+    CHECK(rec.t == 9);
+    CHECK_MESSAGE(rec.shape == 2, "expected item 2 (the later of two at t = 9), found shape " << rec.shape);
 }
