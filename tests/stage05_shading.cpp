@@ -7,6 +7,7 @@
 // nothing of stages 01, 02 or 04 is called, only the library's stable sphere
 // intersection (unmarked) and this stage's shading.
 #include "rt_doctest.hpp"
+#include "shading_scene.hpp"
 
 #include <cmath>
 
@@ -17,45 +18,10 @@
 
 namespace {
 
-const auto always_visible = [](const rt::light_sample&) { return true; };
-
-rt::material test_material()
-{
-    rt::material m;
-    m.ka = {0.2f, 0.1f, 0.05f};
-    m.kd = {0.7f, 0.5f, 0.3f};
-    m.ks = {0.4f, 0.4f, 0.4f};
-    m.p = 20;
-    return m;
-}
-
-/// A scene of one unit sphere at the origin with the test material and one
-/// directional light shining along -z (so l = +z everywhere).
-rt::scene one_sphere_scene()
-{
-    rt::scene s;
-    s.materials.push_back(test_material());
-    rt::sphere ball;
-    ball.material = 0;
-    s.shapes.emplace_back(ball);
-    rt::light sun;
-    sun.kind = rt::light_kind::directional;
-    sun.direction = {0, 0, -1};
-    sun.intensity = {1.0f, 0.9f, 0.8f};
-    s.lights.push_back(sun);
-    s.ambient = {0.3f, 0.3f, 0.3f};
-    return s;
-}
-
-/// The colour of the orthographic ray through (x, y), looking along -z.
-rt::color shade_at(const rt::scene& s, double x, double y)
-{
-    const rt::ray r{rt::vec3(rt::real(x), rt::real(y), 10), rt::vec3(0, 0, -1)};
-    rt::hit_record hit;
-    REQUIRE_MESSAGE(rt::hit_sphere(std::get<rt::sphere>(s.shapes[0]), r, 0, 100, hit),
-                    "expected the test's ray to hit the sphere (the library's hit_sphere: a fault of the test scene, not of your shading)");
-    return rt::direct_lighting(s, hit, r.direction, always_visible);
-}
+using rt_test::always_visible;
+using rt_test::one_sphere_scene;
+using rt_test::shade_at;
+using rt_test::test_material;
 
 /// Whether got is (r, g, b) within eps; each channel a CHECK that prints both colours.
 bool check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
