@@ -32,7 +32,8 @@ const std::vector<std::pair<rt::real, rt::real>> boundaries = {
 TEST_CASE("refract obeys Snell's law: a unit direction in the plane of d and n, eta sin(theta) = eta_t sin(phi)")
 {
     const rt::vec3 n(0, 0, 1);
-    for (const auto& [eta, eta_t] : boundaries) {
+    for (const auto& boundary : boundaries) {
+        const rt::real eta = boundary.first, eta_t = boundary.second; // (no structured binding: CAPTURE is a lambda)
         for (int k = 0; k <= 89; ++k) {
             const double theta = k * pi / 180;
             const rt::vec3 d = incoming(theta);
@@ -57,7 +58,8 @@ TEST_CASE("refract obeys Snell's law: a unit direction in the plane of d and n, 
 TEST_CASE("total internal reflection starts exactly at the critical angle asin(eta_t / eta)")
 {
     const rt::vec3 n(0, 0, 1);
-    for (const auto& [eta, eta_t] : boundaries) {
+    for (const auto& boundary : boundaries) {
+        const rt::real eta = boundary.first, eta_t = boundary.second;
         if (eta <= eta_t)
             continue;
         const double critical = std::asin(double(eta_t) / double(eta));
@@ -101,7 +103,8 @@ TEST_CASE("a ray through a glass slab leaves parallel to itself, shifted by h si
 
 TEST_CASE("Fresnel at normal incidence is ((eta - eta_t) / (eta + eta_t))^2 both ways, and Schlick's R0 agrees")
 {
-    for (const auto& [eta, eta_t] : boundaries) {
+    for (const auto& boundary : boundaries) {
+        const rt::real eta = boundary.first, eta_t = boundary.second;
         const double r0 = std::pow((double(eta) - double(eta_t)) / (double(eta) + double(eta_t)), 2);
         CAPTURE(eta);
         CAPTURE(eta_t);
@@ -119,7 +122,8 @@ TEST_CASE("reflectance + transmittance = 1 at every angle (transmission coeffici
     // t_par = 2 eta cos(theta) / (eta_t cos(theta) + eta cos(phi)); the power
     // transmitted is (eta_t cos(phi)) / (eta cos(theta)) (t_perp^2 + t_par^2) / 2.
     double worst = 0;
-    for (const auto& [eta, eta_t] : boundaries) {
+    for (const auto& boundary : boundaries) {
+        const rt::real eta = boundary.first, eta_t = boundary.second;
         for (int k = 0; k < 90; ++k) {
             const double theta = k * pi / 180, cos_theta = std::cos(theta);
             const double sin_phi = double(eta) / double(eta_t) * std::sin(theta);
@@ -142,7 +146,8 @@ TEST_CASE("Schlick's approximation stays within 0.05 of the Fresnel equations fo
 {
     // Schlick (1994) and FCG 4th ed. sec. 13.1 use it for its speed; its error
     // grows towards grazing angles, largest on the side of the higher index
-    for (const auto& [eta, eta_t] : {std::pair<rt::real, rt::real>(1, rt::real(1.5)), {rt::real(1.5), 1}}) {
+    for (const auto& boundary : {std::pair<rt::real, rt::real>(1, rt::real(1.5)), {rt::real(1.5), 1}}) {
+        const rt::real eta = boundary.first, eta_t = boundary.second;
         double worst = 0, at = 0;
         for (int k = 0; k <= 900; ++k) {
             const double cos_theta = std::cos(k * pi / 1800);
