@@ -28,22 +28,6 @@
 
 namespace rt {
 
-/// The refracted direction of unit `d` at a surface of unit normal `n` facing
-/// it (d.n <= 0), from index `eta` into index `eta_t` (FCG 4th ed., sec. 13.1):
-/// true and the unit direction in `t`, or false on total internal reflection
-/// (t untouched). Both indices must be positive.
-inline bool refract(const vec3& d, const vec3& n, real eta, real eta_t, vec3& t)
-{
-    const real cos_theta = -glm::dot(d, n);      // cos of the angle of incidence, >= 0
-    const real ratio = eta / eta_t;
-    const real sin2_phi = ratio * ratio * std::max(real(0), real(1) - cos_theta * cos_theta);
-    if (sin2_phi > real(1))
-        return false;                             // beyond the critical angle
-    const real cos_phi = std::sqrt(real(1) - sin2_phi);
-    t = ratio * (d + n * cos_theta) - n * cos_phi; // d - n (d.n) = d + n cos(theta)
-    return true;
-}
-
 /// The cosine of the refracted angle phi for incidence cosine `cos_theta`
 /// (Snell's law), or -1 on total internal reflection.
 inline real refracted_cosine(real cos_theta, real eta, real eta_t)
@@ -51,6 +35,20 @@ inline real refracted_cosine(real cos_theta, real eta, real eta_t)
     const real ratio = eta / eta_t;
     const real sin2_phi = ratio * ratio * std::max(real(0), real(1) - cos_theta * cos_theta);
     return sin2_phi > real(1) ? real(-1) : std::sqrt(real(1) - sin2_phi);
+}
+
+/// The refracted direction of unit `d` at a surface of unit normal `n` facing
+/// it (d.n <= 0), from index `eta` into index `eta_t` (FCG 4th ed., sec. 13.1):
+/// true and the unit direction in `t`, or false on total internal reflection
+/// (t untouched). Both indices must be positive.
+inline bool refract(const vec3& d, const vec3& n, real eta, real eta_t, vec3& t)
+{
+    const real cos_theta = -glm::dot(d, n); // cos of the angle of incidence, >= 0
+    const real cos_phi = refracted_cosine(cos_theta, eta, eta_t);
+    if (cos_phi < 0)
+        return false;                        // beyond the critical angle
+    t = (eta / eta_t) * (d + n * cos_theta) - n * cos_phi; // d - n (d.n) = d + n cos(theta)
+    return true;
 }
 
 /// The reflectance of a smooth dielectric boundary for unpolarised light, by
