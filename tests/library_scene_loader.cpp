@@ -59,6 +59,23 @@ TEST_CASE("the scene holds exactly the shapes, materials and lights the file dec
     CHECK(s.max_depth == 3);
 }
 
+TEST_CASE("a dielectric: ior and attenuation are read, and its diffuse colour defaults to 0 (clear glass)")
+{
+    const rt::scene s = rt::load_scene_from_string("material glass ior 1.5 attenuation 0.1 0.2 0.3\n"
+                                                   "material tinted ior 1.33 kd 0.1 0.2 0.3\n"
+                                                   "material matte kd 0.5 0.5 0.5\n");
+    REQUIRE(s.materials.size() == 3);
+    CHECK(rt::is_dielectric(s.materials[0]));
+    CHECK(s.materials[0].ior == doctest::Approx(1.5));
+    CHECK(s.materials[0].attenuation == rt::color(0.1f, 0.2f, 0.3f));
+    CHECK(s.materials[0].kd == rt::color(0.0f)); // clear glass unless kd is given
+    CHECK(s.materials[0].ka == rt::color(0.0f)); // ka = kd
+    CHECK(s.materials[1].kd == rt::color(0.1f, 0.2f, 0.3f));
+    CHECK(s.materials[1].attenuation == rt::color(0.0f));
+    CHECK_FALSE(rt::is_dielectric(s.materials[2]));
+    CHECK(s.materials[2].ior == 0);
+}
+
 TEST_CASE("comments, blank lines, tabs and quoted paths are understood")
 {
     const rt::scene s = rt::load_scene_from_string(

@@ -46,7 +46,8 @@ DEFAULT_SOURCE = TOOLS_DIR.parent
 MANIFEST_NAME = "tools/kit_manifest.json"
 
 BEGIN_RE = re.compile(r"^RT_EXERCISE_BEGIN\((?P<inside>.*)\)$")
-BEGIN_INSIDE_RE = re.compile(r"^stage(?P<stage>[0-9]{2}):\s*(?P<title>\S.*?)\s*$")
+BEGIN_INSIDE_RE = re.compile(r"^stage(?P<stage>[0-9]{2}):\s*(?P<title>\S.*?)\s*"
+                             r"(?:;\s*repeats\s+(?P<repeats>stage[0-9]{2}(?:\s*,\s*stage[0-9]{2})*)\s*)?$")
 END_RE = re.compile(r"^RT_EXERCISE_END$")
 HINT_RE = re.compile(r"^hint\b", re.IGNORECASE)
 STAGE_TEST_RE = re.compile(r"^stage(?P<stage>[0-9]{2})_\w+\.cpp$")
@@ -81,6 +82,13 @@ class Region:
     function: str             # the function's name, for listings
     parameters: List[Tuple[str, bool]]  # (name, is_pack) of each named parameter
     hints: List[str] = field(default_factory=list)  # hint comment lines, stripped
+    # Earlier stages whose answers this body repeats ("; repeats stage07" in the marker:
+    # stage 09's ray colour is stage 07's with glass added). A kit that strips one of
+    # them strips this region too, so no finished answer sits beside a stripped one.
+    repeats: List[int] = field(default_factory=list)
+
+    def strips_with(self, stages: Set[int]) -> bool:
+        return self.stage in stages or any(s in stages for s in self.repeats)
 
     def where(self) -> str:
         return f"{self.path}:{self.begin_line}"
@@ -318,6 +326,11 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
                     "two digits after stage, a colon, then the title")
                 return
             stage = int(inside.group("stage"))
+            repeats = [int(x) for x in re.findall(r"stage([0-9]{2})", inside.group("repeats") or "")]
+            for earlier in repeats:
+                if earlier >= stage or earlier not in known_stages:
+                    err(line, column, f"an earlier stage with a test suite after 'repeats' (before {stage:02d})",
+                        f"stage{earlier:02d}", "name the stages whose answers this body repeats")
             for ctx in stack:
                 if ctx.kind == "function" and ctx.region is not None:
                     err(line, column, f"RT_EXERCISE_END of the region opened at line {ctx.region['line']}",
@@ -351,7 +364,7 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
                 err(top.open_line, 1, "an exercise function that is not constexpr", "constexpr",
                     "the kit's body throws rt::exercise_not_done: remove constexpr")
             top.region = {"line": line, "column": column, "stage": stage,
-                          "title": inside.group("title"), "indent": text[line_start:line_start + column - 1],
+                          "title": inside.group("title"), "repeats": repeats, "indent": text[line_start:line_start + column - 1],
                           "hints": [], "hint": {"active": False}}
             return
         if end:
@@ -371,7 +384,8 @@ def scan_file(path: str, text: str, known_stages: Set[int], errors: List[str]) -
             sig = function.signature
             regions.append(Region(path=path, stage=r["stage"], title=r["title"], begin_line=r["line"],
                                   end_line=line, indent=r["indent"], function=_function_name(sig),
-                                  parameters=parse_parameters(sig), hints=r["hints"]))
+                                  parameters=parse_parameters(sig), hints=r["hints"],
+                                  repeats=r["repeats"]))
             function.region = None
             function.region_closed_at = line
             return
@@ -730,8 +744,8 @@ def plan_kit(root: Path, stages_to_strip: Set[int]) -> KitPlan:
                         f"{', '.join(stage_label(s) for s in sorted(stages)) or 'none'}), "
                         f"found stage {stage_label(s)}; choose one of those" for s in unknown])
     doc_of = {s: stage_doc(root, s) for s in stages}
-    stripped = [r for r in regions if r.stage in stages_to_strip]
-    solved = [r for r in regions if r.stage not in stages_to_strip]
+    stripped = [r for r in regions if r.strips_with(stages_to_strip)]
+    solved = [r for r in regions if not r.strips_with(stages_to_strip)]
     kept, left_out = [], []
     for rel in files:
         (left_out if is_instructor_only(rel, manifest["instructor_only"]) else kept).append(rel)

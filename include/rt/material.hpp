@@ -2,12 +2,15 @@
 //
 // Blinn-Phong with an ideal mirror term, Fundamentals of Computer Graphics,
 // 4th ed., sec. 4.5-4.8: ambient ka, diffuse kd, specular ks with Phong
-// exponent p, and mirror reflectance km. Defaults are those of
+// exponent p, and mirror reflectance km. A dielectric (glass, water; stage 09,
+// FCG sec. 13.1) has an index of refraction ior and an attenuation constant a
+// per unit length inside it (Beer's law). Defaults are those of
 // docs/scene-format.md: a matte light grey.
 #pragma once
 
 #include <string>
 
+#include "config.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -19,6 +22,14 @@ struct material {
     color ks{0.0f};  ///< specular reflectance
     real p = 32;     ///< Phong exponent of the specular highlight
     color km{0.0f};  ///< mirror reflectance
+    real ior = 0;    ///< index of refraction of a dielectric (glass 1.5, water 1.33); 0: opaque
+    color attenuation{0.0f};  ///< a dielectric's Beer attenuation a per unit length: exp(-a s) is left after s
 };
+
+/// True for a dielectric (stage 09): light enters it, refracted.
+inline bool is_dielectric(const material& m)
+{
+    return m.ior > 0;
+}
 
 } // namespace rt

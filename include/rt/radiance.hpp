@@ -1,6 +1,6 @@
 // radiance.hpp - what rt::render (renderer.hpp) needs from a scene: the
 // camera's rays, and the colour each ray brings back (the shaded colour of
-// stages 05-07, or a debug image, aov.hpp).
+// stages 05-07 and 09, or a debug image, aov.hpp).
 //
 //     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
@@ -15,6 +15,7 @@
 #include "accelerator.hpp"
 #include "aov.hpp"
 #include "camera.hpp"
+#include "dielectric.hpp"
 #include "hit_record.hpp"
 #include "ray.hpp"
 #include "ray_image.hpp"
@@ -58,11 +59,12 @@ struct counting_accelerator {
 };
 
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
-/// `accel`: the shaded colour of stages 05-07 (rt::ray_color) or a debug image.
+/// `accel`: the shaded colour of stages 05-07 (rt::ray_color; rt::ray_color_glass,
+/// stage 09, when a material of `s` is a dielectric) or a debug image.
 /// The function refers to `s` and `accel` (it shares ownership of `accel`;
 /// `s` must outlive it) and neither may change while a render runs; between
 /// renders, what it reads at each call (s.max_depth, lights, materials) may
-/// change, while new shapes need a new accelerator.
+/// change, while new shapes need a new accelerator and a first dielectric a new function.
 inline radiance_function make_radiance(const scene& s, std::shared_ptr<const accelerator> accel, aov_kind aov)
 {
     const real far = std::numeric_limits<real>::infinity();
@@ -89,9 +91,12 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
     case aov_kind::none: break;
     }
     const scene* shaded = &s;
-    return [accel, shaded](const ray& r, sample_context& context) {
+    // stage 07's ray colour, or stage 09's where the scene has glass (at the time of this call)
+    const bool glass = has_dielectric(s);
+    return [accel, shaded, glass](const ray& r, sample_context& context) {
         std::uint64_t traced = 0;
-        const color L = ray_color(*shaded, counting_accelerator{accel.get(), &traced}, r);
+        const counting_accelerator counted{accel.get(), &traced};
+        const color L = glass ? ray_color_glass(*shaded, counted, r) : ray_color(*shaded, counted, r);
         context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count
         return L;
     };

@@ -1,7 +1,7 @@
 // refraction.hpp - light through a dielectric (glass, water): the refracted
 // direction, how much is reflected instead, and how much the medium absorbs.
-// The physics of the coming stage 09 (issue 18), tested by closed forms in
-// tests/library_refraction.cpp.
+// Stage 09: refract and schlick_reflectance are exercises (tests/stage09_refraction.cpp);
+// the exact Fresnel equations and Beer's law are given (tests/library_refraction.cpp).
 //
 //     rt::vec3 t;
 //     if (rt::refract(d, n, 1.0f, 1.5f, t)) ...          // air into glass; false: total internal reflection
@@ -43,12 +43,15 @@ inline real refracted_cosine(real cos_theta, real eta, real eta_t)
 /// (t untouched). Both indices must be positive.
 inline bool refract(const vec3& d, const vec3& n, real eta, real eta_t, vec3& t)
 {
+    // RT_EXERCISE_BEGIN(stage09: refracted direction)
+    // Hint: refracted_cosine (above) is Snell's law for the cosines.
     const real cos_theta = -glm::dot(d, n); // cos of the angle of incidence, >= 0
     const real cos_phi = refracted_cosine(cos_theta, eta, eta_t);
     if (cos_phi < 0)
         return false;                        // beyond the critical angle
     t = (eta / eta_t) * (d + n * cos_theta) - n * cos_phi; // d - n (d.n) = d + n cos(theta)
     return true;
+    // RT_EXERCISE_END
 }
 
 /// The reflectance of a smooth dielectric boundary for unpolarised light, by
@@ -77,6 +80,7 @@ inline real fresnel_reflectance(real cos_theta, real eta, real eta_t)
 /// angle from glass into air), and 1 on total internal reflection.
 inline real schlick_reflectance(real cos_theta, real eta, real eta_t)
 {
+    // RT_EXERCISE_BEGIN(stage09: Schlick's reflectance)
     real cosine = cos_theta;
     if (eta > eta_t) {
         cosine = refracted_cosine(cos_theta, eta, eta_t);
@@ -86,6 +90,7 @@ inline real schlick_reflectance(real cos_theta, real eta, real eta_t)
     const real r0 = ((eta_t - eta) / (eta_t + eta)) * ((eta_t - eta) / (eta_t + eta));
     const real m = real(1) - cosine;
     return r0 + (real(1) - r0) * m * m * m * m * m;
+    // RT_EXERCISE_END
 }
 
 /// What is left of light after `distance` inside a medium of attenuation

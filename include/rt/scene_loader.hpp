@@ -173,24 +173,47 @@ private:
             if (other.name == m.name)
                 throw parse_error(line.last(), "a new material name", "a second material " + found_text(m.name),
                                   "material names must be unique");
-        bool ambient_given = false;
-        line.options({"ka", "kd", "ks", "p", "km"}, [&](const std::string& option) {
+        bool ambient_given = false, diffuse_given = false;
+        source_location km_at{}, attenuation_at{};
+        bool km_given = false, attenuation_given = false;
+        line.options({"ka", "kd", "ks", "p", "km", "ior", "attenuation"}, [&](const std::string& option) {
             if (option == "ka") {
                 m.ka = line.rgb("ka");
                 ambient_given = true;
-            } else if (option == "kd")
+            } else if (option == "kd") {
                 m.kd = line.rgb("kd");
-            else if (option == "ks")
+                diffuse_given = true;
+            } else if (option == "ks")
                 m.ks = line.rgb("ks");
-            else if (option == "km")
+            else if (option == "km") {
+                km_at = line.last();
+                km_given = true;
                 m.km = line.rgb("km");
-            else {
+            } else if (option == "ior") {
+                const source_location where = line.here();
+                m.ior = line.number("the index of refraction ior");
+                if (!(m.ior >= 1 && m.ior <= 10))
+                    throw parse_error(where, "an index of refraction from 1 to 10", detail::short_number(double(m.ior)),
+                                      "glass is 1.5, water 1.33, diamond 2.42");
+            } else if (option == "attenuation") {
+                attenuation_at = line.last();
+                attenuation_given = true;
+                m.attenuation = line.rgb("attenuation");
+            } else {
                 const source_location where = line.here();
                 m.p = line.number("Phong exponent p");
                 if (m.p < 0)
                     throw parse_error(where, "a non-negative Phong exponent", detail::short_number(double(m.p)));
             }
         });
+        if (is_dielectric(m) && km_given)
+            throw parse_error(km_at, "either km (a mirror) or ior (a dielectric)", "both",
+                              "a dielectric reflects by the Fresnel equations: drop km");
+        if (!is_dielectric(m) && attenuation_given)
+            throw parse_error(attenuation_at, "attenuation only with ior", "attenuation without ior",
+                              "attenuation is absorption inside a dielectric: add ior (glass 1.5)");
+        if (is_dielectric(m) && !diffuse_given)
+            m.kd = color(0.0f); // clear glass unless the file says otherwise
         if (!ambient_given)
             m.ka = m.kd;
         result_.materials.push_back(m);

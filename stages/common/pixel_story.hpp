@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include <rt/hit_record.hpp>
 #include <rt/light.hpp>
 #include <rt/ray.hpp>
@@ -103,16 +105,45 @@ void print_story_json(std::ostream& out, const story& s, const rt::scene& sc);
 /// otherwise) and fills column, row, i and j.
 void place_pixel(story& s, int column, int row, int nx, int ny);
 
-/// Names each recorded query: the first closest-hit query is the camera ray,
-/// later ones reflections 1, 2, ...; any-hit queries are shadow rays.
+/// Names each recorded query: the first closest-hit query is the camera ray;
+/// a later one starts at an earlier hit (the nearest hit point to its origin),
+/// and is "reflection k" when it leaves on the side the ray came from, or
+/// "refraction k" (stage 09) when it goes through the surface, k being one
+/// more than the bounces of that earlier ray; any-hit queries are shadow rays.
 inline void name_queries(story& s)
 {
-    int reflections = 0;
-    for (query_record& q : s.queries) {
-        if (q.what == query_record::kind::any)
+    std::vector<int> depth(s.queries.size(), 0);
+    bool camera_seen = false;
+    for (std::size_t k = 0; k < s.queries.size(); ++k) {
+        query_record& q = s.queries[k];
+        if (q.what == query_record::kind::any) {
             q.role = "shadow";
-        else
-            q.role = reflections++ == 0 ? "camera" : "reflection " + std::to_string(reflections - 1);
+            continue;
+        }
+        if (!camera_seen) {
+            camera_seen = true;
+            q.role = "camera";
+            continue;
+        }
+        std::size_t parent = k;
+        rt::real nearest = 0;
+        for (std::size_t p = 0; p < k; ++p) {
+            const query_record& earlier = s.queries[p];
+            if (earlier.what != query_record::kind::closest || !earlier.hit)
+                continue;
+            const rt::real gap = glm::length(q.r.origin - earlier.rec.point);
+            if (parent == k || gap < nearest) {
+                parent = p;
+                nearest = gap;
+            }
+        }
+        if (parent == k) { // no earlier hit: a ray of its own
+            q.role = "ray";
+            continue;
+        }
+        depth[k] = depth[parent] + 1;
+        const bool through = glm::dot(q.r.direction, s.queries[parent].rec.geometric_normal) < 0;
+        q.role = (through ? "refraction " : "reflection ") + std::to_string(depth[k]);
     }
 }
 

@@ -1,6 +1,6 @@
 # One stage program's --pixel-json story of the centre pixel of pixel_story.scene,
 # checked against the values worked out by hand in that file.
-#   cmake -DPROGRAM=... -DSTAGE=03..08 -DSCENE=... -P pixel_story_case.cmake
+#   cmake -DPROGRAM=... -DSTAGE=03..09 -DSCENE=... -P pixel_story_case.cmake
 # A program whose stage (or an earlier one) is not done yet exits 3: the test is
 # then skipped, not failed (it is not a stage's test and is never graded).
 execute_process(COMMAND "${PROGRAM}" "${SCENE}" --pixel-json 1 1
@@ -106,7 +106,7 @@ if(STAGE STREQUAL "05")
   if(NOT count EQUAL 1)
     message(FATAL_ERROR "stage 05 traces no shadow ray: expected 1 query, found ${count}\n${json}")
   endif()
-elseif(STAGE STREQUAL "06" OR STAGE STREQUAL "07" OR STAGE STREQUAL "08")
+elseif(STAGE STREQUAL "06" OR STAGE STREQUAL "07" OR STAGE STREQUAL "08" OR STAGE STREQUAL "09")
   # the shadow ray towards the light at (0, 0, 10) is blocked by the small
   # sphere (shape 1) at its near side, (0, 0, 1.5); its t depends on how the
   # shadow ray is written (a unit direction, or a segment to the light)
