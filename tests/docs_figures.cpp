@@ -40,13 +40,16 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
+#include <rt/dielectric.hpp>
 #include <rt/encoding.hpp>
 #include <rt/groups.hpp>
 #include <rt/error.hpp>
 #include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
 #include <rt/ray_image.hpp>
+#include <rt/radiance.hpp>
 #include <rt/raytracer.hpp>
+#include <rt/refraction.hpp>
 #include <rt/scene.hpp>
 #include <rt/scene_loader.hpp>
 #include <rt/shading.hpp>
@@ -214,6 +217,35 @@ rt::color stage05_colour(const rt::scene& s, const rt::accelerator& accel, const
 rt::color stage07_colour(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
 {
     return rt::ray_color(s, accel, r);
+}
+
+/// Stage 09's colour of the pixel in `column`, `row` (from the top) of
+/// scenes/glass.scene, and the closest-hit and any-hit queries it took.
+std::pair<rt::color, std::uint64_t> glass_pixel(const fs::path& root, int column, int row, int max_depth = -1)
+{
+    rt::scene s = rt::load_scene(root / "scenes" / "glass.scene");
+    if (max_depth >= 0)
+        s.max_depth = max_depth;
+    const rt::accelerator accel(s);
+    const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+    std::uint64_t queries = 0;
+    const rt::color c = rt::ray_color_glass(s, rt::counting_accelerator{&accel, &queries},
+                                            rt::pixel_ray(gen, column, s.height - 1 - row));
+    return {c, queries};
+}
+
+/// Schlick against the exact Fresnel reflectance at a boundary from index
+/// `eta` into `eta_t`, for incidence angles in degrees.
+std::string schlick_table(rt::real eta, rt::real eta_t, const std::vector<double>& angles)
+{
+    std::string out = "angle   Schlick   Fresnel   Schlick - Fresnel";
+    for (const double degrees : angles) {
+        const rt::real c = rt::real(std::cos(degrees * 3.14159265358979323846 / 180));
+        const double schlick = double(rt::schlick_reflectance(c, eta, eta_t));
+        const double fresnel = double(rt::fresnel_reflectance(c, eta, eta_t));
+        out += formatted("\n%5g   %7.4f   %7.4f   %+8.4f", degrees, schlick, fresnel, schlick - fresnel);
+    }
+    return out;
 }
 
 /// "colour (linear) (r, g, b)" as the story prints it (%.9g).
@@ -531,6 +563,22 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         enc.exposure = 1.0f;
         enc.tonemap = rt::tonemap_kind::reinhard;
         return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), enc);
+    };
+    // stage 09: Schlick against Fresnel, and the --pixel story of the glass scene
+    all["stage09.schlick_air_to_glass"] = [] {
+        return schlick_table(1, rt::real(1.5), {0, 30, 45, 60, 70, 80, 85, 89});
+    };
+    all["stage09.schlick_glass_to_air"] = [] {
+        return schlick_table(rt::real(1.5), 1, {0, 20, 30, 35, 40, 41, 42, 60});
+    };
+    all["stage09.critical_angle"] = [] {
+        return formatted("%.1f", std::asin(1 / 1.5) * 180 / 3.14159265358979323846);
+    };
+    all["stage09.glass_180_200.colour.float"] = [root] { return story_colour(glass_pixel(root, 180, 200).first); };
+    all["stage09.glass_180_200.bytes.float"] = [root] { return story_bytes_gamma(glass_pixel(root, 180, 200).first); };
+    all["stage09.glass_180_200.queries"] = [root] { return std::to_string(glass_pixel(root, 180, 200).second); };
+    all["stage09.glass_180_200.colour_depth_1.float"] = [root] {
+        return story_colour(glass_pixel(root, 180, 200, 1).first);
     };
     // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)
     all["stage04.showcase.group_items"] = [root] {

@@ -6,6 +6,8 @@
 // in a uniform sky B shows R B + (1 - R) (what the refracted ray sees), and
 // inside a ball every bounce meets the surface at the same angle, so the sum
 // over all paths is a geometric series. Scenes and rays are built here.
+// max_depth stays at 12 or below: a ray that hits its own surface again (no
+// offset) splits in two at every level, and 2^64 rays would never finish.
 #include "rt_doctest.hpp"
 
 #include <algorithm>
@@ -252,11 +254,11 @@ TEST_CASE("Schlick's reflectance follows its formula at every angle and stays wi
         }
         CAPTURE(eta);
         CAPTURE(eta_t);
-        MESSAGE("eta " << eta << " -> " << eta_t << ": Schlick's largest error " << worst << " at " << at
-                       << " degrees");
         CHECK_MESSAGE(worst_formula < 1e-5, "expected R0 + (1 - R0)(1 - cos)^5 with cos on the air side, off by "
                                                 << worst_formula);
-        CHECK_MESSAGE(worst < 0.05, "expected Schlick within 0.05 of the exact reflectance, found " << worst);
+        CHECK_MESSAGE(worst < 0.05, "expected Schlick within 0.05 of the exact reflectance, found " << worst
+                                                                                                 << " at " << at
+                                                                                                 << " degrees");
     }
 }
 
@@ -271,7 +273,7 @@ TEST_CASE("a clear glass ball in a uniform sky: L = B (1 - (1 - R) R^(D - 1)), a
     // for j < D, and f(D) = 0 (the last ray adds nothing). So
     //     L = B (1 - (1 - R) R^(D - 1)) for D >= 1, and 0 for D = 0.
     const rt::color sky(0.25f, 0.5f, 1.0f);
-    for (int D : {0, 1, 2, 3, 6, 64}) {
+    for (int D : {0, 1, 2, 3, 6, 10}) {
         rt::scene s = sky_scene(sky, D);
         s.materials.push_back(glass(rt::real(1.5)));
         rt::sphere ball;
@@ -286,9 +288,11 @@ TEST_CASE("a clear glass ball in a uniform sky: L = B (1 - (1 - R) R^(D - 1)), a
                 CAPTURE(D);
                 CAPTURE(b);
                 CAPTURE(length);
-                INFO("a ball of clear glass (ior 1.5) hit at impact parameter b: R = " << R
-                     << "; expected R of the mirror ray plus 1 - R of the refracted one, which meets the far "
-                        "side, and so on up to depth D (max_depth)");
+                INFO("a ball of clear glass (ior 1.5) hit at impact parameter b: R = "
+                     << R << "; expected R of the mirror ray plus 1 - R of the refracted one, which meets the far "
+                             "side, and so on up to depth D (max_depth). Less light (0 for D = 1) means a new ray met "
+                             "the surface it starts on: start it with rt::spawn_ray(hit, direction), not at "
+                             "hit.point; with |d| = 3, refract needs d normalised first");
                 check_color(rt::ray_color_glass(s, accel, r), f * sky.r, f * sky.g, f * sky.b, 1e-4);
             }
         }
@@ -303,7 +307,7 @@ TEST_CASE("an absorbing ball seen through its centre: Beer's law exp(-a 2r) on e
     //     L = B (R0 + k (1 - R0)^2 (1 - (k R0)^(D - 1)) / (1 - k R0)).
     const rt::color sky(1.0f), a(0.1f, 0.5f, 2.0f);
     const double radius = 1.5, R0 = 0.04;
-    for (int D : {1, 2, 5, 20}) {
+    for (int D : {1, 2, 5, 8}) {
         rt::scene s = sky_scene(sky, D);
         s.materials.push_back(glass(rt::real(1.5), a));
         rt::sphere ball;
@@ -411,7 +415,7 @@ TEST_CASE("mirrors trace with glass: a mirror shows a glass ball as glass, and t
     // so L = km B (R km + T (1 + R km) / (1 + R)), T = 1 - R.
     // A mirror that traced with stage 07's ray_color would see the ball opaque: L = 0.
     const double R = 0.04, T = 1 - R, km = 0.5;
-    rt::scene s = sky_scene(rt::color(0.2f, 0.6f, 1.0f), 64);
+    rt::scene s = sky_scene(rt::color(0.2f, 0.6f, 1.0f), 12); // R^10 is below 1e-13
     s.materials.push_back(glass(rt::real(1.5)));
     rt::material mirror = glass(0);
     mirror.km = rt::color(float(km));

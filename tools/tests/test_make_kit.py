@@ -391,6 +391,26 @@ class Stripping(unittest.TestCase):
         twice = make_kit.strip_text("include/rt/f.hpp", once, regions, {1: "docs/stages/01-first.md", 2: None})
         self.assertEqual(once, twice)
 
+    def test_a_region_that_repeats_an_earlier_stage_is_stripped_with_it(self):
+        text = GOOD.replace("RT_EXERCISE_BEGIN(stage02: twice)", "RT_EXERCISE_BEGIN(stage02: twice; repeats stage01)")
+        regions, errors = scan(text)
+        self.assertEqual(errors, [])
+        twice = next(r for r in regions if r.stage == 2)
+        self.assertEqual(twice.title, "twice")
+        self.assertEqual(twice.repeats, [1])
+        self.assertTrue(twice.strips_with({1}))   # stripping stage 01 strips it too
+        self.assertTrue(twice.strips_with({2}))
+        self.assertFalse(twice.strips_with({3}))
+        add = next(r for r in regions if r.stage == 1)
+        self.assertFalse(add.strips_with({2}))    # not the other way round
+
+    def test_repeats_must_name_an_earlier_known_stage(self):
+        for wrong in ("repeats stage02", "repeats stage03", "repeats stage07"):
+            text = GOOD.replace("RT_EXERCISE_BEGIN(stage02: twice)", f"RT_EXERCISE_BEGIN(stage02: twice; {wrong})")
+            _, errors = scan(text)
+            self.assertEqual(len(errors), 1, errors)
+            self.assertIn("an earlier stage with a test suite after 'repeats'", errors[0])
+
     def test_a_title_with_quotes_is_escaped(self):
         region = make_kit.Region("f.hpp", 3, 'the "best" \\ way', 1, 2, "", "f", [])
         self.assertIn(r'"stage 03: the \"best\" \\ way: see docs/student-guide.md"',
