@@ -38,14 +38,28 @@ TEST_CASE("parallel_for calls the body once for every item, with a worker number
 
 TEST_CASE("parallel_for rethrows the first exception a body throws, after the other threads stopped")
 {
+    // Items after 10 wait until item 10 is about to throw, then take 1 ms each:
+    // with the hand-out stopping at the failure, a few more start; without
+    // it, all 10000 would. (Without the wait and the 1 ms, the test depended
+    // on the scheduler: on a loaded machine the other threads raced through
+    // every item before item 10's thread ran.)
     std::atomic<int> started{0};
+    std::atomic<bool> throwing{false};
     bool thrown = false;
     std::string what;
     try {
         rt::parallel_for(10000, 4, [&](std::size_t item, int) {
             started.fetch_add(1);
-            if (item == 10)
+            if (item == 10) {
+                throwing.store(true);
                 throw std::runtime_error("item 10 failed");
+            }
+            if (item > 10) {
+                const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+                while (!throwing.load() && std::chrono::steady_clock::now() < give_up)
+                    std::this_thread::yield();
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            }
         });
     } catch (const std::runtime_error& e) {
         thrown = true;
