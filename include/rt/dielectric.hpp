@@ -45,6 +45,8 @@ color ray_color_glass(const scene& s, const Accelerator& accel, const ray& r, in
                       const shading_options& options = {})
 {
     // RT_EXERCISE_BEGIN(stage09: ray colour with glass; repeats stage07)
+    // Hint: start from your stage 07 ray_color and call ray_color_glass where it
+    //   called itself; then add the dielectric's two rays (docs/stages/09-refraction.md).
     hit_record hit;
     if (!accel.closest_hit(r, real(0), std::numeric_limits<real>::infinity(), hit))
         return s.background;
