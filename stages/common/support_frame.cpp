@@ -1,6 +1,7 @@
 // Stage 08's renderer and its pixel story, compiled once (support_frame.hpp).
 #include "support_frame.hpp"
 
+#include <rt/dielectric.hpp>
 #include <rt/radiance.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/shading.hpp>
@@ -32,7 +33,9 @@ story shaded_story(const rt::scene& s, const std::string& program, int column, i
     st.program = program;
     place_pixel(st, column, row, gen.nx, gen.ny);
     st.camera = rt::pixel_ray(gen, st.i, st.j);
-    st.linear = rt::ray_color(s, recording<world>(w, st.queries), st.camera);
+    // as rt::make_radiance does: stage 09's colour where the scene has glass
+    const recording<world> traced(w, st.queries);
+    st.linear = rt::has_dielectric(s) ? rt::ray_color_glass(s, traced, st.camera) : rt::ray_color(s, traced, st.camera);
     name_queries(st);
     explain_lights(st, s, true, false,
                    [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,

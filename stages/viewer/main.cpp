@@ -43,6 +43,10 @@
 #include <rt/scene.hpp>
 #include <rt/tonemap.hpp>
 
+#include "inspector.hpp"
+#include "pixel_story.hpp"
+#include "support_frame.hpp"
+
 // Under AddressSanitizer the viewer runs LeakSanitizer's check itself, just
 // before SDL_Quit (see sdl_session).
 #if defined(__SANITIZE_ADDRESS__)
@@ -80,7 +84,9 @@ const char* controls =
     "       ] [ samples per pixel x2 / /2      . , max depth +1 / -1\n"
     "       = - exposure +/- 1/2 stop          t next tone map\n"
     "       r reset the camera   s save the image (and print its stage08_output command)\n"
-    "       p print that command   h this help   q or Escape quit\n";
+    "       p print that command   h this help   q or Escape quit\n"
+    "       i ray inspector: click a pixel to see its rays (camera white, shadow yellow or red\n"
+    "         when blocked, reflection cyan, refraction magenta) and read its story on stderr\n";
 
 const std::string usage = std::string("usage: viewer (SCENE | MODEL.obj) [options]\n"
                                       "Renders a scene file or a bare OBJ model in a window, a coarse preview first,\n"
@@ -88,8 +94,8 @@ const std::string usage = std::string("usage: viewer (SCENE | MODEL.obj) [option
                                       "the camera or a setting changes. The options are stage08_output's:\n") +
                           stage::render_options_usage +
                           "  -o OUTPUT             where the save key writes (.png, .ppm or .pfm; default render.png)\n"
-                          "  --script TEXT|@FILE   scripted input (docs/viewer.md): orbit, pan, zoom, key, wait,\n"
-                          "                        sleep, screenshot, title, save, args, quit\n"
+                          "  --script TEXT|@FILE   scripted input (docs/viewer.md): orbit, pan, zoom, key, click,\n"
+                          "                        wait, sleep, screenshot, title, save, args, story, quit\n"
                           "  --timeout SECONDS     give up (exit 1) after this long (default: never)\n"
                           "  --help                this text\n\n" +
                           controls;
@@ -235,6 +241,10 @@ public:
             throw sdl_failure("create a texture");
         bytes_.assign(std::size_t(view_.width) * std::size_t(view_.height) * 3, 0);
         SDL_UpdateTexture(texture_.get(), nullptr, bytes_.data(), view_.width * 3);
+        // the inspector's copy: the worker thread alone reads the progressive renderer's
+        const rt::aabb box = rt::scene_bounds(scene);
+        reach_ = box.empty() ? 100.0 : 2 * double(glm::length(box.hi - box.lo));
+        scene_ = scene;
         progressive_.emplace(std::move(scene));
         progressive_->start(view_);
     }
@@ -295,8 +305,22 @@ private:
             if (event.window.event == SDL_WINDOWEVENT_EXPOSED)
                 redraw_ = true;
             break;
+        case SDL_MOUSEBUTTONDOWN:
+            if (event.button.button == SDL_BUTTON_LEFT) {
+                pressed_ = true;
+                dragged_ = false;
+            }
+            break;
+        case SDL_MOUSEBUTTONUP:
+            // a left click that did not move: the inspector's pick
+            if (event.button.button == SDL_BUTTON_LEFT && pressed_ && !dragged_ && inspecting_)
+                inspect(event.button.x, event.button.y);
+            pressed_ = false;
+            break;
         case SDL_MOUSEMOTION: {
             const std::uint32_t buttons = event.motion.state;
+            if (buttons & SDL_BUTTON_LMASK)
+                dragged_ = true;
             const bool shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
             const rt::real dx = rt::real(event.motion.xrel), dy = rt::real(event.motion.yrel);
             if ((buttons & SDL_BUTTON_LMASK) && !shift) {
@@ -403,6 +427,11 @@ private:
                 say("no full-resolution pass is done yet");
             break;
         }
+        case SDLK_i:
+            inspecting_ = !inspecting_;
+            say(inspecting_ ? "ray inspector on: click a pixel" : "ray inspector off");
+            redraw_ = true;
+            break;
         case SDLK_h:
         case SDLK_F1: std::cerr << controls; break;
         case SDLK_q:
@@ -491,10 +520,75 @@ private:
         SDL_SetWindowTitle(window_.get(), title.str().c_str());
     }
 
+    /// The scene as the view shows it: its camera and max depth.
+    rt::scene view_scene() const
+    {
+        rt::scene s = scene_;
+        s.cam = view_.cam;
+        s.max_depth = view_.max_depth;
+        return s;
+    }
+
+    /// The story of the pixel at window point (x, y): exactly what
+    /// `stage08_output ARGS --pixel-json x y` prints for the view (its
+    /// arguments: the `args` command), printed on stderr and drawn.
+    void inspect(int x, int y)
+    {
+        if (x < 0 || y < 0 || x >= view_.width || y >= view_.height)
+            return;
+        const rt::scene s = view_scene();
+        stage::story st = stage::shaded_story(s, "stage08_output", x, y, view_.width, view_.height);
+        const std::optional<viewer::completed_image> done = progressive_->completed();
+        stage::add_encoding_story(st, encoding_,
+                                  done ? done->pass.samples_per_pixel : view_.samples_per_pixel);
+        if (view_.aov != rt::aov_kind::none)
+            say("the story is the shaded image's (key 1), whatever the view shows");
+        stage::print_story(std::cerr, st, s);
+        story_ = std::move(st);
+        story_scene_ = s;
+        redraw_ = true;
+    }
+
+    /// The inspected pixel's rays over the image, through the view's camera.
+    void draw_overlay()
+    {
+        if (!inspecting_ || !story_)
+            return;
+        const rt::ray_generator gen = rt::make_ray_generator(view_.cam, view_.width, view_.height);
+        const double w = double(view_.width), h = double(view_.height);
+        for (const viewer::overlay_segment& seg : viewer::story_segments(*story_, gen, reach_)) {
+            const auto seen = viewer::clip(seg.a, seg.b, -1, -1, w + 1, h + 1);
+            const std::array<std::uint8_t, 3> rgb = overlay_colour(seg.what);
+            SDL_SetRenderDrawColor(renderer_.get(), rgb[0], rgb[1], rgb[2], 255);
+            if (seen)
+                SDL_RenderDrawLineF(renderer_.get(), float(seen->first.x), float(seen->first.y),
+                                    float(seen->second.x), float(seen->second.y));
+            if (seg.ends_at_hit && seg.b.x >= 0 && seg.b.y >= 0 && seg.b.x < w && seg.b.y < h) {
+                const SDL_FRect dot{float(seg.b.x) - 2, float(seg.b.y) - 2, 5, 5};
+                SDL_RenderFillRectF(renderer_.get(), &dot);
+            }
+        }
+        SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
+    }
+
+    static std::array<std::uint8_t, 3> overlay_colour(viewer::ray_kind k)
+    {
+        switch (k) {
+        case viewer::ray_kind::camera: return {255, 255, 255};
+        case viewer::ray_kind::shadow_visible: return {255, 220, 0};
+        case viewer::ray_kind::shadow_blocked: return {220, 40, 0};
+        case viewer::ray_kind::reflection: return {0, 220, 255};
+        case viewer::ray_kind::refraction: return {255, 0, 200};
+        case viewer::ray_kind::other: break;
+        }
+        return {160, 160, 160};
+    }
+
     void draw()
     {
         SDL_RenderClear(renderer_.get());
         SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
+        draw_overlay();
         SDL_RenderPresent(renderer_.get());
         redraw_ = false;
     }
@@ -504,6 +598,7 @@ private:
     {
         SDL_RenderClear(renderer_.get());
         SDL_RenderCopy(renderer_.get(), texture_.get(), nullptr, nullptr);
+        draw_overlay(); // what the window shows
         std::vector<std::uint8_t> pixels(std::size_t(view_.width) * std::size_t(view_.height) * 3);
         if (SDL_RenderReadPixels(renderer_.get(), nullptr, SDL_PIXELFORMAT_RGB24, pixels.data(), view_.width * 3) != 0)
             throw sdl_failure("read the window's pixels back");
@@ -569,6 +664,16 @@ private:
                 SDL_PushEvent(&e);
                 ++next_command_;
                 return;
+            } else if (c.name == "click") {
+                click(int(c.number(0)), int(c.number(1)));
+                ++next_command_;
+                return;
+            } else if (c.name == "story") {
+                if (!story_)
+                    throw rt::error(rt::to_string(c.where) + ": expected a pixel's story, found none: press "
+                                                             "'key i' and 'click X Y' first");
+                rt::write_atomically(c.arguments[0],
+                                     [&](std::ostream& out) { stage::print_story_json(out, *story_, story_scene_); });
             } else if (c.name == "key") {
                 SDL_Event e{};
                 e.type = SDL_KEYDOWN;
@@ -606,6 +711,23 @@ private:
             }
             ++next_command_;
         }
+    }
+
+    /// A left click at window pixel (x, y) that does not move, as SDL events.
+    void click(int x, int y)
+    {
+        SDL_Event e{};
+        e.type = SDL_MOUSEBUTTONDOWN;
+        e.button.windowID = SDL_GetWindowID(window_.get());
+        e.button.button = SDL_BUTTON_LEFT;
+        e.button.state = SDL_PRESSED;
+        e.button.clicks = 1;
+        e.button.x = x;
+        e.button.y = y;
+        SDL_PushEvent(&e);
+        e.type = SDL_MOUSEBUTTONUP;
+        e.button.state = SDL_RELEASED;
+        SDL_PushEvent(&e);
     }
 
     /// A drag with `button` from the window's centre by (dx, dy), as SDL events.
@@ -659,6 +781,12 @@ private:
     std::unique_ptr<SDL_Texture, sdl_deleter> texture_;
     std::optional<viewer::progressive_renderer> progressive_;
 
+    rt::scene scene_;                     ///< for the inspector's stories
+    double reach_ = 100;                  ///< how far a ray that hits nothing is drawn
+    bool inspecting_ = false, pressed_ = false, dragged_ = false;
+    std::optional<stage::story> story_;   ///< the inspected pixel's
+    rt::scene story_scene_;               ///< the scene it was traced in (camera, max depth)
+
     rt::image shown_;
     viewer::status status_;
     std::vector<std::uint8_t> bytes_;
@@ -708,7 +836,8 @@ int main(int argc, char** argv)
         // script errors before the window opens; the files a script writes are outputs too
         std::vector<std::filesystem::path> outputs{set.output};
         for (const viewer::script_command& c : viewer::parse_script(set.script, set.script_name))
-            if (c.name == "save" || c.name == "screenshot" || c.name == "title" || c.name == "args")
+            if (c.name == "save" || c.name == "screenshot" || c.name == "title" || c.name == "args" ||
+                c.name == "story")
                 outputs.push_back(c.arguments[0]);
         stage::check_input_and_outputs(set.render.input,
                                        rt::has_obj_extension(set.render.input) ? "an OBJ file" : "a scene file", outputs);

@@ -6,12 +6,14 @@
 //     pan DX DY         drag with the right button
 //     zoom STEPS        turn the wheel (positive: closer)
 //     key NAME          press a key (an SDL key name: "5", "]", "s", "Escape")
+//     click X Y         a left click at window pixel (X, Y) that does not move (the inspector's pick)
 //     wait [LEVELS]     until the view is finished, or LEVELS levels are (the preview is 1)
 //     sleep MS          let MS milliseconds pass
 //     screenshot FILE   the window's pixels, read back, to FILE (.png or .ppm)
 //     title FILE        the window's title, to FILE
 //     save FILE         what the save key writes (the last finished level) to FILE
 //     args FILE         the stage08_output arguments of that image, one a line, without -o
+//     story FILE        the inspected pixel's story as JSON (stage08_output --pixel-json's)
 //     quit              close the window
 #pragma once
 
@@ -46,8 +48,11 @@ inline const char* script_signature(const std::string& name)
         return "nn";
     if (name == "zoom")
         return "n";
-    if (name == "key" || name == "screenshot" || name == "title" || name == "save" || name == "args")
+    if (name == "key" || name == "screenshot" || name == "title" || name == "save" || name == "args" ||
+        name == "story")
         return "w";
+    if (name == "click")
+        return "ii";
     if (name == "wait")
         return "?";
     if (name == "sleep")
@@ -97,7 +102,8 @@ inline std::vector<script_command> parse_script(const std::string& text, const s
         const char* signature = detail::script_signature(command.name);
         if (!signature)
             throw rt::parse_error(command.where,
-                                  "a command (orbit, pan, zoom, key, wait, sleep, screenshot, title, save, args, quit)",
+                                  "a command (orbit, pan, zoom, key, click, wait, sleep, screenshot, title, save, "
+                                  "args, story, quit)",
                                   "'" + command.name + "'");
         const std::string kinds = signature;
         const std::size_t given = words.size() - 1;

@@ -12,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -25,6 +27,7 @@
 #include <rt/scene.hpp>
 
 #include "camera_control.hpp"
+#include "inspector.hpp"
 #include "progressive.hpp"
 #include "script.hpp"
 
@@ -376,12 +379,111 @@ TEST_CASE("script: a bad command is one line with its place, what was expected a
         }
         return std::string();
     };
-    CHECK(error_of("wait\norbi 1 2") == "--script:2:1: expected a command (orbit, pan, zoom, key, wait, sleep, "
-                                       "screenshot, title, save, args, quit), found 'orbi'");
+    CHECK(error_of("wait\norbi 1 2") == "--script:2:1: expected a command (orbit, pan, zoom, key, click, wait, "
+                                       "sleep, screenshot, title, save, args, story, quit), found 'orbi'");
+    CHECK(error_of("click 3") == "--script:1:7: expected 2 arguments after 'click', found 1");
+    CHECK(error_of("click 3 -1") == "--script:1:9: expected a whole number from 0 to 1000000, found '-1'");
     CHECK(error_of("orbit 1") == "--script:1:7: expected 2 arguments after 'orbit', found 1");
     CHECK(error_of("quit now") == "--script:1:6: expected 0 arguments after 'quit', found 1");
     CHECK(error_of("wait 1 2") == "--script:1:8: expected 1 or 0 argument after 'wait', found 2");
     CHECK(error_of("zoom x") == "--script:1:6: expected a number between -1e6 and 1e6, found 'x'");
     CHECK(error_of("sleep 1.5") == "--script:1:7: expected a whole number from 0 to 1000000, found '1.5'");
     CHECK(error_of("sleep -1") == "--script:1:7: expected a whole number from 0 to 1000000, found '-1'");
+}
+
+// --- the ray inspector (inspector.hpp) -------------------------------------------
+
+TEST_CASE("the inspector's projection inverts generate_ray: a point on a pixel's ray shows at that pixel's centre")
+{
+    for (const rt::projection kind : {rt::projection::perspective, rt::projection::orthographic}) {
+        rt::camera cam;
+        cam.kind = kind;
+        cam.eye = {1, 2, 5};
+        cam.look_at = {0, 0.5f, 0};
+        cam.up = {0.1f, 1, 0};
+        if (kind == rt::projection::perspective)
+            cam.fov_degrees = rt::real(50);
+        const int nx = 67, ny = 41;
+        const rt::ray_generator gen = rt::make_ray_generator(cam, nx, ny);
+        for (const int i : {0, 13, 66})
+            for (const int j : {0, 20, 40}) {
+                const rt::ray r = rt::pixel_ray(gen, i, j);
+                for (const rt::real t : {rt::real(0.5), rt::real(3.7), rt::real(40)}) {
+                    const std::optional<viewer::window_point> p = viewer::project(gen, r.at(t));
+                    CAPTURE(i);
+                    CAPTURE(j);
+                    CAPTURE(t);
+                    REQUIRE(p);
+                    // the window's rows count from the top: pixel row ny - 1 - j, centre ny - j - 0.5
+                    CHECK(p->x == doctest::Approx(i + 0.5).epsilon(1e-4));
+                    CHECK(p->y == doctest::Approx(ny - j - 0.5).epsilon(1e-4));
+                }
+            }
+        if (kind == rt::projection::perspective) {
+            CHECK_FALSE(viewer::project(gen, cam.eye + (cam.eye - cam.look_at))); // behind the eye
+        }
+    }
+}
+
+TEST_CASE("the inspector clips a segment to the window, and drops one that misses it")
+{
+    const auto inside = viewer::clip({10, 10}, {20, 30}, 0, 0, 100, 50);
+    REQUIRE(inside);
+    CHECK(inside->first.x == 10);
+    CHECK(inside->second.y == 30);
+    const auto across = viewer::clip({-100, 25}, {200, 25}, 0, 0, 100, 50);
+    REQUIRE(across);
+    CHECK(across->first.x == doctest::Approx(0));
+    CHECK(across->second.x == doctest::Approx(100));
+    CHECK_FALSE(viewer::clip({-10, -10}, {-5, 60}, 0, 0, 100, 50));
+    CHECK_FALSE(viewer::clip({1e12, 5}, {2e12, 5}, 0, 0, 100, 50));
+}
+
+TEST_CASE("the inspector draws each query of a story as a segment of its kind, to its hit, its end or its reach")
+{
+    rt::camera cam;
+    cam.eye = {0, 0, 10};
+    cam.look_at = {0, 0, 0};
+    const rt::ray_generator gen = rt::make_ray_generator(cam, 64, 48);
+    stage::story st;
+    auto add = [&](stage::query_record::kind what, const char* role, rt::ray r, bool hit, rt::vec3 point,
+                   rt::real tmax) {
+        stage::query_record q;
+        q.what = what;
+        q.role = role;
+        q.r = r;
+        q.hit = hit;
+        q.rec.point = point;
+        q.tmax = tmax;
+        st.queries.push_back(q);
+    };
+    const rt::real inf = std::numeric_limits<rt::real>::infinity();
+    using kind = stage::query_record::kind;
+    add(kind::closest, "camera", rt::ray{cam.eye, {0, 0, -1}}, true, {0, 0, 0}, inf);
+    add(kind::any, "shadow (light 0)", rt::ray{{0, 0, 0}, {1, 1, 0}}, false, {}, rt::real(0.9999));
+    add(kind::any, "shadow (light 1)", rt::ray{{0, 0, 0}, {-1, 0, 0}}, true, {-0.5f, 0, 0}, rt::real(0.9999));
+    add(kind::closest, "reflection 1", rt::ray{{0, 0, 0}, {0, 1, 1}}, false, {}, inf);
+    add(kind::closest, "refraction 1", rt::ray{{0, 0, 0}, {0.5f, 0, -1}}, true, {0.5f, 0, -1}, inf);
+    const std::vector<viewer::overlay_segment> segs = viewer::story_segments(st, gen, 4);
+    REQUIRE(segs.size() == 5);
+    CHECK(segs[0].what == viewer::ray_kind::camera);
+    CHECK(segs[1].what == viewer::ray_kind::shadow_visible);
+    CHECK(segs[2].what == viewer::ray_kind::shadow_blocked);
+    CHECK(segs[3].what == viewer::ray_kind::reflection);
+    CHECK(segs[4].what == viewer::ray_kind::refraction);
+    // the camera ray is seen end on: it starts (clipped just in front of the eye) and ends at the centre
+    CHECK(segs[0].a.x == doctest::Approx(32));
+    CHECK(segs[0].b.y == doctest::Approx(24));
+    CHECK(segs[0].ends_at_hit);
+    // the visible shadow ray ends at its light, t = tmax: up and to the right of the centre
+    CHECK(segs[1].b.x > 32);
+    CHECK(segs[1].b.y < 24);
+    CHECK_FALSE(segs[1].ends_at_hit);
+    // the blocked one at its blocker, left of the centre
+    CHECK(segs[2].b.x < 32);
+    CHECK(segs[2].ends_at_hit);
+    // the reflection that missed is drawn to its reach, 4 along its unit direction
+    const std::optional<viewer::window_point> far = viewer::project(gen, rt::vec3(0, 4, 4) / std::sqrt(rt::real(2)));
+    REQUIRE(far);
+    CHECK(segs[3].b.y == doctest::Approx(far->y));
 }

@@ -12,6 +12,8 @@
 # 3. The screenshot equals stage08_output's .ppm byte for byte, and the saved PNG
 #    its .png; the image differs from the scene's own camera (the input did
 #    something); the title shows the view, 4/4 spp done, the time and the rays per second.
+# 4. The depth view equals stage08_output --aov depth. 5. The ray inspector's story of a
+#    clicked pixel equals stage08_output --pixel-json's, and its rays are drawn.
 # Every step has a timeout: the viewer's own --timeout, coreutils' timeout around
 # it, then execute_process's.
 foreach(name VIEWER STAGE08 XVFB_RUN SCENE WORK)
@@ -158,4 +160,54 @@ expect_same(depth-shot.ppm depth-reference.ppm "the depth view, read back")
 file(READ "${WORK}/depth-shot.ppm" depth_bytes HEX)
 if(NOT depth_bytes MATCHES "ffffff")
   message(FATAL_ERROR "expected the depth view's farthest hit to be white (ff ff ff), found no white pixel")
+endif()
+
+# 5. The ray inspector: a third run orbits, waits, turns the inspector on (key i),
+#    clicks a pixel and writes that pixel's story as JSON: it must be, byte for
+#    byte, what stage08_output --pixel-json prints for the same view and pixel;
+#    the window shows the rays over the image, so it differs from the image.
+set(script "orbit 30 -10; wait; key i; click 40 30; args inspect-args.txt; story story.json; \
+screenshot inspect-shot.ppm; quit")
+execute_process(
+  COMMAND "${XVFB_RUN}" -a -s "-screen 0 640x480x24"
+          ${guard} "${VIEWER}" "${SCENE}" ${size} --spp 1 --threads 2 --timeout 120 --script "${script}"
+  WORKING_DIRECTORY "${WORK}"
+  RESULT_VARIABLE code
+  OUTPUT_VARIABLE out
+  ERROR_VARIABLE err
+  TIMEOUT 180)
+foreach(file inspect-args.txt story.json inspect-shot.ppm)
+  if(NOT code EQUAL 0 OR NOT EXISTS "${WORK}/${file}")
+    message(FATAL_ERROR "expected the scripted inspector to exit with 0 and write ${file}, found '${code}':\n"
+                        "${out}${err}")
+  endif()
+endforeach()
+if(NOT err MATCHES "ray inspector on" OR NOT err MATCHES "\\[0\\] camera: closest hit")
+  message(FATAL_ERROR "expected the inspector to say it is on and print the pixel's story on stderr, found:\n${err}")
+endif()
+file(STRINGS "${WORK}/inspect-args.txt" arguments)
+execute_process(
+  COMMAND "${STAGE08}" ${arguments} --pixel-json 40 30
+  WORKING_DIRECTORY "${WORK}"
+  RESULT_VARIABLE code
+  OUTPUT_FILE "${WORK}/story-reference.json"
+  ERROR_VARIABLE err
+  TIMEOUT 120)
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "expected stage08_output --pixel-json 40 30 to exit with 0, found '${code}': ${err}")
+endif()
+execute_process(COMMAND "${CMAKE_COMMAND}" -E compare_files "${WORK}/story.json" "${WORK}/story-reference.json"
+                RESULT_VARIABLE differ)
+if(NOT differ EQUAL 0)
+  file(READ "${WORK}/story.json" mine)
+  file(READ "${WORK}/story-reference.json" theirs)
+  message(FATAL_ERROR "expected the inspector's story of pixel 40 30 to equal stage08_output --pixel-json's, found\n"
+                      "${mine}\nagainst\n${theirs}")
+endif()
+message(STATUS "the inspector's story equals stage08_output --pixel-json 40 30")
+render(inspect-reference.ppm ${arguments})
+execute_process(COMMAND "${CMAKE_COMMAND}" -E compare_files "${WORK}/inspect-shot.ppm" "${WORK}/inspect-reference.ppm"
+                RESULT_VARIABLE differ)
+if(differ EQUAL 0)
+  message(FATAL_ERROR "expected the inspector's rays drawn over the image, found the image alone")
 endif()
