@@ -20,6 +20,7 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/dielectric.hpp>
+#include <rt/radiance.hpp>
 #include <rt/refraction.hpp>
 #include <rt/scene.hpp>
 
@@ -92,23 +93,6 @@ void add_square_z(rt::scene& s, rt::real h, rt::real z0, int material, bool up =
     s.shapes.emplace_back(a);
     s.shapes.emplace_back(b);
 }
-
-/// An accelerator seen through a count of the queries made with it.
-struct counting_accelerator {
-    const rt::accelerator* accel;
-    std::uint64_t* queries;
-
-    bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const
-    {
-        ++*queries;
-        return accel->closest_hit(r, tmin, tmax, rec);
-    }
-    bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const
-    {
-        ++*queries;
-        return accel->any_hit(r, tmin, tmax);
-    }
-};
 
 /// An accelerator seen through a list of the rays it was asked about.
 struct recording_accelerator {
@@ -367,7 +351,7 @@ TEST_CASE("leaving glass beyond the critical angle: only the reflected ray is tr
         // |d| = 2: the distance travelled inside is t |d|, not t
         const rt::ray r{rt::vec3(0, 0, -1), rt::vec3(rt::real(2 * std::sin(theta)), 0, rt::real(2 * std::cos(theta)))};
         std::uint64_t queries = 0;
-        const rt::color L = rt::ray_color_glass(s, counting_accelerator{&accel, &queries}, r);
+        const rt::color L = rt::ray_color_glass(s, rt::counting_accelerator{&accel, &queries}, r);
         const bool tir = degrees > 42;
         CAPTURE(degrees);
         CHECK_MESSAGE(queries == (tir ? 2u : 3u),
