@@ -44,4 +44,13 @@ struct camera {
     real focal_distance = 1;          ///< d, the distance from e to the image plane
 };
 
+/// A thin lens in front of a perspective camera (stage 10, the scene file's
+/// `lens` statement; FCG 4th ed., sec. 13.4.3): rays leave a disk of radius
+/// `aperture` around e and meet on the plane in focus, at distance `focus`
+/// from e along the view direction. Aperture 0 is the pinhole of stage 02.
+struct lens_model {
+    real aperture = 0;  ///< the lens radius
+    real focus = 1;     ///< the distance from e to the plane in focus
+};
+
 } // namespace rt

@@ -19,6 +19,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "glossy.hpp"
 #include "hit_record.hpp"
 #include "material.hpp"
 #include "ray.hpp"
@@ -39,14 +40,18 @@ namespace rt {
 /// total internal reflection), R = schlick_reflectance; a ray that hits a
 /// dielectric from the inside (hit.front_face false) brings back
 /// beer_attenuation(a, t |d|) of all it sees there. Mirrors and the recursion
-/// trace with this function, so a mirror shows glass as glass.
+/// trace with this function, so a mirror shows glass as glass; a mirror
+/// reflects along mirror_direction (glossy.hpp), which is reflect unless the
+/// material is glossy and `options` has random numbers (stage 10).
 template <class Accelerator>
 color ray_color_glass(const scene& s, const Accelerator& accel, const ray& r, int depth = 0,
                       const shading_options& options = {})
 {
     // RT_EXERCISE_BEGIN(stage09: ray colour with glass; repeats stage07)
     // Hint: start from your stage 07 ray_color and call ray_color_glass where it
-    //   called itself; then add the dielectric's two rays (docs/stages/09-refraction.md).
+    //   called itself, and let a mirror reflect along mirror_direction(m, r.direction,
+    //   hit.normal, options) (glossy.hpp: reflect, blurred in stage 10); then add the
+    //   dielectric's two rays (docs/stages/09-refraction.md).
     hit_record hit;
     if (!accel.closest_hit(r, real(0), std::numeric_limits<real>::infinity(), hit))
         return s.background;
@@ -56,9 +61,9 @@ color ray_color_glass(const scene& s, const Accelerator& accel, const ray& r, in
     const auto trace = [&](const vec3& direction) {
         return ray_color_glass(s, accel, spawn_ray(hit, direction), depth + 1, options);
     };
-    if (!is_dielectric(m)) { // stage 07's mirror
+    if (!is_dielectric(m)) { // stage 07's mirror (glossy in stage 10: mirror_direction, glossy.hpp)
         if ((m.km.r > 0 || m.km.g > 0 || m.km.b > 0) && depth < s.max_depth)
-            L += m.km * trace(reflect(r.direction, hit.normal));
+            L += m.km * trace(mirror_direction(m, r.direction, hit.normal, options));
         return L;
     }
     if (depth < s.max_depth) {

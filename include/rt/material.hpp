@@ -4,7 +4,9 @@
 // 4th ed., sec. 4.5-4.8: ambient ka, diffuse kd, specular ks with Phong
 // exponent p, and mirror reflectance km. A dielectric (glass, water; stage 09,
 // FCG sec. 13.1) has an index of refraction ior and an attenuation constant a
-// per unit length inside it (Beer's law). Defaults are those of
+// per unit length inside it (Beer's law). A glossy mirror (stage 10, FCG sec.
+// 13.4.4) reflects around the mirror direction, blurred by the side a of a
+// square of perturbations (glossy.hpp). Defaults are those of
 // docs/scene-format.md: a matte light grey.
 #pragma once
 
@@ -24,6 +26,7 @@ struct material {
     color km{0.0f};  ///< mirror reflectance
     real ior = 0;    ///< index of refraction of a dielectric (glass 1.5, water 1.33); 0: opaque
     color attenuation{0.0f};  ///< a dielectric's Beer attenuation a per unit length: exp(-a s) is left after s
+    real glossy = 0;  ///< a mirror's blur: the side a of the square of perturbations; 0: a perfect mirror
 };
 
 /// True for a dielectric (stage 09): light enters it, refracted.

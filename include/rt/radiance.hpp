@@ -1,6 +1,6 @@
 // radiance.hpp - what rt::render (renderer.hpp) needs from a scene: the
 // camera's rays, and the colour each ray brings back (the shaded colour of
-// stages 05-07 and 09, or a debug image, aov.hpp).
+// stages 05-07, 09 and 10, or a debug image, aov.hpp).
 //
 //     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
@@ -16,6 +16,7 @@
 #include "aov.hpp"
 #include "camera.hpp"
 #include "dielectric.hpp"
+#include "glossy.hpp"
 #include "hit_record.hpp"
 #include "ray.hpp"
 #include "ray_image.hpp"
@@ -23,6 +24,8 @@
 #include "renderer.hpp"
 #include "sampler.hpp"
 #include "scene.hpp"
+#include "shading.hpp"
+#include "thin_lens.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -60,11 +63,16 @@ struct counting_accelerator {
 
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
 /// `accel`: the shaded colour of stages 05-07 (rt::ray_color; rt::ray_color_glass,
-/// stage 09, when a material of `s` is a dielectric) or a debug image.
+/// stage 09, when a material of `s` is a dielectric or a glossy mirror) or a
+/// debug image. The shaded colour uses the sample's random numbers (stage 10):
+/// the thin lens (s.lens, a perspective camera) moves the camera ray's start
+/// over the lens, area lights are seen from a random point, glossy mirrors blur.
 /// The function refers to `s` and `accel` (it shares ownership of `accel`;
 /// `s` must outlive it) and neither may change while a render runs; between
-/// renders, what it reads at each call (s.max_depth, lights, materials) may
-/// change, while new shapes need a new accelerator and a first dielectric a new function.
+/// renders, what it reads at each call (s.max_depth, the camera and lens,
+/// lights, materials) may change, while new shapes need a new accelerator and a
+/// first dielectric or glossy mirror a new function. The camera rays must come
+/// from s.cam for the thin lens to focus where s.lens says.
 inline radiance_function make_radiance(const scene& s, std::shared_ptr<const accelerator> accel, aov_kind aov)
 {
     const real far = std::numeric_limits<real>::infinity();
@@ -91,12 +99,23 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
     case aov_kind::none: break;
     }
     const scene* shaded = &s;
-    // stage 07's ray colour, or stage 09's where the scene has glass (at the time of this call)
-    const bool glass = has_dielectric(s);
-    return [accel, shaded, glass](const ray& r, sample_context& context) {
+    // stage 07's ray colour, or stage 09's where the scene has glass or a glossy
+    // mirror (at the time of this call)
+    const bool glass = has_dielectric(s) || has_glossy(s);
+    return [accel, shaded, glass](const ray& pinhole, sample_context& context) {
         std::uint64_t traced = 0;
         const counting_accelerator counted{accel.get(), &traced};
-        const color L = glass ? ray_color_glass(*shaded, counted, r) : ray_color(*shaded, counted, r);
+        // stage 10: this sample's random numbers pick its point of the lens, of
+        // each area light and its glossy reflections
+        shading_options options;
+        options.random = &context.rng;
+        ray r = pinhole;
+        if (shaded->lens.aperture > 0 && shaded->cam.kind == projection::perspective) { // stage 10's thin lens
+            const frame basis = make_frame(shaded->cam.eye, shaded->cam.look_at, shaded->cam.up);
+            const real xi1 = context.rng.next_float(), xi2 = context.rng.next_float();
+            r = thin_lens_ray(pinhole, basis, shaded->lens.aperture, shaded->lens.focus, concentric_disk(xi1, xi2));
+        }
+        const color L = glass ? ray_color_glass(*shaded, counted, r, 0, options) : ray_color(*shaded, counted, r, 0, options);
         context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count
         return L;
     };

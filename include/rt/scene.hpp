@@ -30,6 +30,7 @@ struct scene {
     int width = 640;    ///< image width in pixels (nx)
     int height = 480;   ///< image height in pixels (ny)
     camera cam;
+    lens_model lens;    ///< a thin lens (stage 10); aperture 0 is a pinhole
     std::vector<material> materials;
     std::vector<light> lights;
     std::vector<shape> shapes;

@@ -21,12 +21,15 @@
 #include <functional>
 #include <istream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <system_error>
 #include <utility>
 #include <variant>
 #include <vector>
+
+#include <glm/geometric.hpp>
 
 #include "camera_model.hpp"
 #include "camera_statement.hpp"
@@ -79,8 +82,8 @@ inline int find_material(const scene& s, statement& line)
 
 inline const std::vector<std::string>& keywords()
 {
-    static const std::vector<std::string> words = {"image",  "camera",  "material",   "sphere",  "triangle", "mesh",
-                                                   "light",  "ambient", "background", "samples", "max_depth"};
+    static const std::vector<std::string> words = {"image",   "camera",     "material", "sphere",    "triangle", "mesh",
+                                                   "light",   "ambient",    "background", "samples", "max_depth", "lens"};
     return words;
 }
 
@@ -110,6 +113,13 @@ public:
         if (statements_ == 0)
             throw parse_error({file_, std::max(lines, 1), 1}, "at least one statement", "an empty file",
                               "see docs/scene-format.md for an example scene");
+        if (lens_at_) {
+            if (result_.cam.kind != projection::perspective && result_.lens.aperture > 0)
+                throw parse_error(*lens_at_, "a lens in front of a perspective camera", "an orthographic camera",
+                                  "a thin lens focuses a perspective camera's rays; use aperture 0 or a perspective camera");
+            if (!focus_given_) // in focus where the camera looks
+                result_.lens.focus = glm::length(result_.cam.look_at - result_.cam.eye);
+        }
         return std::move(result_);
     }
 
@@ -142,6 +152,8 @@ private:
         else if (keyword == "samples")
             result_.samples = line.integer("samples per pixel", 1, options_.max_samples,
                                            "the limit is load_options::max_samples; raise it if you mean it");
+        else if (keyword == "lens")
+            read_lens(line);
         else if (keyword == "max_depth")
             result_.max_depth = line.integer("max_depth", 0, options_.max_depth,
                                              "the limit is load_options::max_depth; raise it if you mean it");
@@ -174,9 +186,9 @@ private:
                 throw parse_error(line.last(), "a new material name", "a second material " + found_text(m.name),
                                   "material names must be unique");
         bool ambient_given = false, diffuse_given = false;
-        source_location km_at{}, attenuation_at{};
-        bool km_given = false, attenuation_given = false;
-        line.options({"ka", "kd", "ks", "p", "km", "ior", "attenuation"}, [&](const std::string& option) {
+        source_location km_at{}, attenuation_at{}, glossy_at{};
+        bool km_given = false, attenuation_given = false, glossy_given = false;
+        line.options({"ka", "kd", "ks", "p", "km", "ior", "attenuation", "glossy"}, [&](const std::string& option) {
             if (option == "ka") {
                 m.ka = line.rgb("ka");
                 ambient_given = true;
@@ -195,6 +207,14 @@ private:
                 if (!(m.ior >= 1 && m.ior <= 10))
                     throw parse_error(where, "an index of refraction from 1 to 10", detail::short_number(double(m.ior)),
                                       "glass is 1.5, water 1.33, diamond 2.42");
+            } else if (option == "glossy") {
+                glossy_at = line.last();
+                glossy_given = true;
+                const source_location where = line.here();
+                m.glossy = line.number("the glossy blur a");
+                if (!(m.glossy >= 0 && m.glossy <= 4))
+                    throw parse_error(where, "a glossy blur from 0 to 4", detail::short_number(double(m.glossy)),
+                                      "it is the side of the square of perturbed directions: 0.1 is brushed metal");
             } else if (option == "attenuation") {
                 attenuation_at = line.last();
                 attenuation_given = true;
@@ -212,6 +232,9 @@ private:
         if (!is_dielectric(m) && attenuation_given)
             throw parse_error(attenuation_at, "attenuation only with ior", "attenuation without ior",
                               "attenuation is absorption inside a dielectric: add ior (glass 1.5)");
+        if (glossy_given && !(m.km.r > 0 || m.km.g > 0 || m.km.b > 0))
+            throw parse_error(glossy_at, "glossy only with km", "glossy without a mirror",
+                              "glossy blurs a mirror's reflection: add km (0.8 0.8 0.8)");
         if (is_dielectric(m) && !diffuse_given)
             m.kd = color(0.0f); // clear glass unless the file says otherwise
         if (!ambient_given)
@@ -314,7 +337,7 @@ private:
 
     void read_light(statement& line)
     {
-        const std::string kind = line.word("a light type (point or directional)");
+        const std::string kind = line.word("a light type (point, directional, rect or sphere)");
         light l;
         if (kind == "point") {
             l.kind = light_kind::point;
@@ -332,17 +355,71 @@ private:
                 else
                     l.intensity = line.rgb("intensity");
             });
+        } else if (kind == "rect") {
+            l.kind = light_kind::rect;
+            line.options({"corner", "edge1", "edge2", "intensity"}, [&](const std::string& option) {
+                if (option == "corner")
+                    l.position = line.vector("corner");
+                else if (option == "edge1")
+                    l.edge1 = line.vector("edge1");
+                else if (option == "edge2")
+                    l.edge2 = line.vector("edge2");
+                else
+                    l.intensity = line.rgb("intensity");
+            });
+            const real area = glm::length(glm::cross(l.edge1, l.edge2));
+            if (!(area > 0))
+                throw parse_error(line.line_start(), "a rect light with an area", "edges that are parallel or zero",
+                                  "edge1 and edge2 are two sides from the corner, e.g. edge1 1 0 0 edge2 0 0 1");
+        } else if (kind == "sphere") {
+            l.kind = light_kind::sphere;
+            line.options({"center", "radius", "intensity"}, [&](const std::string& option) {
+                if (option == "center")
+                    l.position = line.vector("center");
+                else if (option == "radius") {
+                    const source_location where = line.here();
+                    l.radius = line.number("radius");
+                    if (!(l.radius > 0))
+                        throw parse_error(where, "a positive radius", detail::short_number(double(l.radius)),
+                                          "a light of radius 0 is a point light: use light point");
+                } else
+                    l.intensity = line.rgb("intensity");
+            });
         } else {
-            throw parse_error(line.last(), "a light type (point or directional)", found_text(kind),
-                              nearest_hint(kind, {"point", "directional"}));
+            throw parse_error(line.last(), "a light type (point, directional, rect or sphere)", found_text(kind),
+                              nearest_hint(kind, {"point", "directional", "rect", "sphere"}));
         }
         result_.lights.push_back(l);
+    }
+
+    void read_lens(statement& line)
+    {
+        if (lens_at_)
+            throw parse_error(line.line_start(), "one lens", "a second lens statement", "a camera has one lens; delete one");
+        lens_at_ = line.line_start();
+        line.options({"aperture", "focus"}, [&](const std::string& option) {
+            const source_location where = line.here();
+            if (option == "aperture") {
+                result_.lens.aperture = line.number("the lens radius (aperture)");
+                if (!(result_.lens.aperture >= 0))
+                    throw parse_error(where, "an aperture of 0 or more", detail::short_number(double(result_.lens.aperture)),
+                                      "it is the lens radius; 0 is a pinhole");
+            } else {
+                result_.lens.focus = line.number("the focus distance");
+                focus_given_ = true;
+                if (!(result_.lens.focus > 0))
+                    throw parse_error(where, "a positive focus distance", detail::short_number(double(result_.lens.focus)),
+                                      "it is the distance from the eye to the plane in focus");
+            }
+        });
     }
 
     std::string file_;
     std::filesystem::path folder_;
     load_options options_;
     scene result_;
+    std::optional<source_location> lens_at_;
+    bool focus_given_ = false;
     bool seen_camera_ = false;
     bool seen_image_ = false;
     int statements_ = 0;

@@ -9,10 +9,12 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 
 #include "hit_record.hpp"
 #include "light.hpp"
 #include "material.hpp"
+#include "random.hpp"
 #include "scene.hpp"
 #include "vec.hpp"
 
@@ -32,12 +34,18 @@ inline color blinn_phong(const material& m, const vec3& n, const vec3& v, const 
 
 struct shading_options {
     bool light_falloff = false;  ///< point lights fall off as 1/r^2 (the book: off)
+    /// Stage 10: the sample's random numbers. With them, each area light is seen
+    /// from a new random point of it and a glossy mirror reflects in a random
+    /// direction near the mirror direction; without (nullptr, stages 05-09), an
+    /// area light shines from its centre and a glossy mirror is a perfect one.
+    pcg32* random = nullptr;
 };
 
 /// The direct light at a hit seen along direction d: the ambient term plus
 /// every light that `visible(sample)` says reaches the point (stage 06 passes a
 /// shadow test; stage 05 passes "always"). A light behind the surface, as seen
-/// from the viewer's side, contributes nothing.
+/// from the viewer's side, contributes nothing. With options.random, each area
+/// light is sampled at one random point (stage 10: one shadow ray per light).
 template <class Visibility>
 color direct_lighting(const scene& s, const hit_record& hit, const vec3& d, Visibility&& visible,
                       const shading_options& options = {})
@@ -46,7 +54,10 @@ color direct_lighting(const scene& s, const hit_record& hit, const vec3& d, Visi
     color L = m.ka * s.ambient;
     const vec3 v = -glm::normalize(d);
     for (const light& source : s.lights) {
-        const light_sample sample = sample_light(source, hit.point, options.light_falloff);
+        std::optional<vec2> xi;
+        if (options.random && is_area_light(source))
+            xi = vec2(options.random->next_float(), options.random->next_float());
+        const light_sample sample = sample_light(source, hit.point, options.light_falloff, xi);
         if (glm::dot(hit.geometric_normal, sample.l) <= 0)
             continue; // the light is behind the surface: it cannot light this side
         if (!visible(sample))

@@ -250,6 +250,7 @@ private:
                 radiance_aov_ = v.aov;
             }
             scene_.max_depth = v.max_depth; // no render is running: the worker is here
+            scene_.cam = v.cam;              // the thin lens (stage 10) focuses along the view's camera
             const rt::radiance_function& radiance = radiance_;
             auto guarded = [&](const rt::ray& r, rt::sample_context& ctx) {
                 if (generation_.load(std::memory_order_relaxed) != generation)
