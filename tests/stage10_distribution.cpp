@@ -248,7 +248,7 @@ TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confu
     CHECK(widest == doctest::Approx(1).epsilon(1e-4));
 }
 
-TEST_CASE("glossy_direction: a = 0 is the mirror direction; otherwise unit directions inside the square of side a about r, centred on it")
+TEST_CASE("glossy_direction: a = 0 is the mirror direction, otherwise unit directions inside the square of side a about r, centred on it")
 {
     uniform u;
     problems off;
