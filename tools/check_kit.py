@@ -13,7 +13,8 @@
    - a case of a stripped stage either passes (it tests unmarked code) or fails with the
      not-done message of one of its own stage's exercises; every stripped stage has at
      least one such failure (so its tests can fail);
-   - every stage program exits with 3 and "not done yet: ..." on scenes/showcase.scene.
+   - every stage program exits with 3 and "not done yet: ..." on scenes/showcase.scene
+     (stage 10's on scenes/soft.scene, the first scene that reaches its exercises).
 4. For each stage with exercise regions, a kit with only that stage stripped: its cases fail
    as above, every case of every other stage passes; its own stage program exits 3 naming
    the stage and every earlier stage's program exits 0 (a program runs the student's code of
@@ -239,9 +240,18 @@ def run_program(exe: Path, scene: Path, timeout: int = 300) -> Tuple[Optional[in
     return p.returncode, p.stderr.decode("utf-8", "replace").strip()
 
 
+# The scene each stage program runs on: showcase.scene, except for a stage whose
+# exercises only a scene of its own reaches (stage 10's area lights, lens and gloss).
+PROGRAM_SCENES = {10: "soft.scene"}
+
+
+def program_scene(kit: Path, number: int) -> Path:
+    return kit / "scenes" / PROGRAM_SCENES.get(number, "showcase.scene")
+
+
 def check_programs(report: KitReport, kit: Path, build: Path) -> None:
-    scene = kit / "scenes" / "showcase.scene"
-    for target, _ in program_targets(kit):
+    for target, folder in program_targets(kit):
+        scene = program_scene(kit, int(folder.name[:2]))
         exe = build / "stages" / target
         if not exe.is_file():
             report.problems.append(f"{target}: not built")
@@ -261,12 +271,12 @@ def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) ->
     """A kit with only `stage` stripped: every program runs the student's code of its own
     stage and earlier ones, and nothing later. So the stage's own program exits 3 naming
     the stage, and every earlier stage's program exits 0 (it reaches no stripped code)."""
-    scene = kit / "scenes" / "showcase.scene"
     before = len(report.problems)
     for target, folder in program_targets(kit):
         number = int(folder.name[:2])
         if number > stage:
             continue  # later programs run this stage's code too
+        scene = program_scene(kit, number)
         exe = build / "stages" / target
         if not exe.is_file():
             report.problems.append(f"{target}: not built")

@@ -1,10 +1,15 @@
 // Stage 08's renderer and its pixel story, compiled once (support_frame.hpp).
 #include "support_frame.hpp"
 
+#include <cstdint>
+
 #include <rt/dielectric.hpp>
+#include <rt/glossy.hpp>
+#include <rt/random.hpp>
 #include <rt/radiance.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/shading.hpp>
+#include <rt/thin_lens.hpp>
 
 #include "support.hpp"
 
@@ -33,13 +38,27 @@ story shaded_story(const rt::scene& s, const std::string& program, int column, i
     st.program = program;
     place_pixel(st, column, row, gen.nx, gen.ny);
     st.camera = rt::pixel_ray(gen, st.i, st.j);
-    // as rt::make_radiance does: stage 09's colour where the scene has glass
+    // as rt::make_radiance does for the render's first sample of this pixel, at
+    // the pixel's centre: stage 09's colour where the scene has glass or a glossy
+    // mirror, and stage 10's random numbers for the lens, area lights and gloss
+    rt::pcg32 random = rt::seeded_generator(0, std::uint64_t(row) * std::uint64_t(nx) + std::uint64_t(column), 1,
+                                            rt::integrator_stream);
+    rt::shading_options options;
+    options.random = &random;
+    if (s.lens.aperture > 0 && s.cam.kind == rt::projection::perspective) {
+        const rt::real xi1 = random.next_float(), xi2 = random.next_float();
+        st.camera = rt::thin_lens_ray(st.camera, gen.basis, s.lens.aperture, s.lens.focus, rt::concentric_disk(xi1, xi2));
+    }
     const recording<world> traced(w, st.queries);
-    st.linear = rt::has_dielectric(s) ? rt::ray_color_glass(s, traced, st.camera) : rt::ray_color(s, traced, st.camera);
+    st.linear = rt::has_dielectric(s) || rt::has_glossy(s) ? rt::ray_color_glass(s, traced, st.camera, 0, options)
+                                                           : rt::ray_color(s, traced, st.camera, 0, options);
     name_queries(st);
-    explain_lights(st, s, true, false,
-                   [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,
-                      const rt::color& I) { return rt::blinn_phong(m, n, v, l, I); });
+    explain_lights(
+        st, s, true, false,
+        [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l, const rt::color& I) {
+            return rt::blinn_phong(m, n, v, l, I);
+        },
+        true);
     return st;
 }
 

@@ -41,8 +41,10 @@ rt::render_result render_scene(const rt::scene& s, rt::aov_kind aov, const rt::r
 /// The story of pixel (column, row) of an nx x ny image of scene `s`
 /// (pixel_story.hpp): its centre's ray traced by the stage-07 colour
 /// (rt::ray_color over the library's BVH; stage 09's rt::ray_color_glass
-/// where the scene has glass, as rt::make_radiance), every query recorded and named,
-/// the light terms worked out; stage 08 adds what its pipeline makes of it.
+/// where the scene has glass or a glossy mirror, as rt::make_radiance) with
+/// the random numbers of the render's first sample (seed 0) for stage 10's
+/// lens, area lights and gloss, every query recorded and named, the light
+/// terms worked out; stage 08 adds what its pipeline makes of it.
 story shaded_story(const rt::scene& s, const std::string& program, int column, int row, int nx, int ny);
 
 /// rt::save_image through the colour pipeline: `enc` for the shaded image,
