@@ -32,6 +32,7 @@
 #include <rt/accelerator.hpp>
 #include <rt/camera.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/offset.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>

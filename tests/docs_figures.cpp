@@ -43,6 +43,9 @@
 #include <rt/dielectric.hpp>
 #include <rt/encoding.hpp>
 #include <rt/groups.hpp>
+#include <rt/light.hpp>
+#include <rt/light_sample.hpp>
+#include <rt/random.hpp>
 #include <rt/error.hpp>
 #include <rt/encoded_output.hpp>
 #include <rt/image_io.hpp>
@@ -232,6 +235,82 @@ std::pair<rt::color, std::uint64_t> glass_pixel(const fs::path& root, int column
     const rt::color c = rt::ray_color_glass(s, rt::counting_accelerator{&accel, &queries},
                                             rt::pixel_ray(gen, column, s.height - 1 - row));
     return {c, queries};
+}
+
+/// Stage 10: the share of shadow rays from x that reach a sphere light (radius
+/// 1, centre 5 above x) past a ball (radius 0.3, 2 above x), for n samples by
+/// solid angle (the student's sample_sphere_light), against the closed form
+/// (cos a - cos t_max) / (1 - cos t_max). The test's geometry.
+std::string sphere_light_table()
+{
+    rt::light bulb;
+    bulb.kind = rt::light_kind::sphere;
+    bulb.position = rt::vec3(0, 0, 5);
+    bulb.radius = 1;
+    const double cos_max = std::sqrt(1 - 1.0 / 25), cos_a = std::sqrt(1 - 0.09 / 4);
+    const double want = (cos_a - cos_max) / (1 - cos_max);
+    std::string out = formatted("closed form %.5f\nsamples   share     error     sigma = sqrt(p (1 - p) / n)", want);
+    rt::pcg32 rng(2026, 10);
+    for (const int n : {100, 1000, 10000, 100000}) {
+        int reach = 0;
+        for (int k = 0; k < n; ++k) {
+            const rt::real xi1 = rng.next_float(), xi2 = rng.next_float();
+            const rt::vec3 y = rt::sample_light(bulb, rt::vec3(0), false, rt::vec2(xi1, xi2)).l;
+            // the ray from the origin along y passes the ball (centre (0, 0, 2), radius 0.3) when
+            // its angle to the axis exceeds asin(0.3 / 2)
+            reach += double(y.z) < cos_a ? 1 : 0;
+        }
+        const double share = double(reach) / n;
+        out += formatted("\n%7d   %.5f  %+.5f   %.5f", n, share, share - want, std::sqrt(want * (1 - want) / n));
+    }
+    return out;
+}
+
+/// Stage 10: the noise of a pixel in the middle of a penumbra (half the light
+/// hidden, p = 1/2) estimated with n shadow rays: the standard deviation of
+/// 4000 such estimates against sqrt(p (1 - p) / n), drawn with the student's
+/// sample_rect_light (x below the square light [-1, 1]^2 at height 4, hidden
+/// where the ray crosses height 2 left of x = 0).
+std::string penumbra_noise_table()
+{
+    rt::light panel;
+    panel.kind = rt::light_kind::rect;
+    panel.position = rt::vec3(-1, -1, 4);
+    panel.edge1 = rt::vec3(2, 0, 0);
+    panel.edge2 = rt::vec3(0, 2, 0);
+    rt::pcg32 rng(7, 10);
+    std::string out = "samples   noise    sqrt(1/4 / n)";
+    for (const int n : {1, 4, 16, 64, 256}) {
+        const int trials = 4000;
+        double sum = 0, square = 0;
+        for (int k = 0; k < trials; ++k) {
+            int reach = 0;
+            for (int m = 0; m < n; ++m) {
+                const rt::real xi1 = rng.next_float(), xi2 = rng.next_float();
+                reach += rt::sample_light(panel, rt::vec3(0), false, rt::vec2(xi1, xi2)).l.x >= 0 ? 1 : 0;
+            }
+            const double estimate = double(reach) / n;
+            sum += estimate;
+            square += estimate * estimate;
+        }
+        const double mean = sum / trials;
+        out += formatted("\n%7d   %.4f   %.4f", n, std::sqrt(square / trials - mean * mean), std::sqrt(0.25 / n));
+    }
+    return out;
+}
+
+/// Stage 10: the radius in pixels of the circle of confusion of the centre of
+/// ball `index` of scenes/soft.scene: aperture |1 - z / focus| at depth z along
+/// the view, seen from the eye (ny / (2 z tan(fov / 2)) pixels per unit there).
+std::string soft_blur_pixels(const fs::path& root, std::size_t index)
+{
+    const rt::scene s = rt::load_scene(root / "scenes" / "soft.scene");
+    const rt::sphere& ball = std::get<rt::sphere>(s.shapes.at(index));
+    const rt::vec3 view = glm::normalize(s.cam.look_at - s.cam.eye);
+    const double z = double(glm::dot(ball.center - s.cam.eye, view));
+    const double radius = double(s.lens.aperture) * std::fabs(1 - z / double(s.lens.focus));
+    const double fov = double(s.cam.fov_degrees.value_or(45)) * 3.14159265358979323846 / 180;
+    return formatted("%.1f", radius * s.height / (2 * z * std::tan(fov / 2)));
 }
 
 /// Schlick against the exact Fresnel reflectance at a boundary from index
@@ -580,6 +659,11 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage09.glass_180_200.colour_depth_1.float"] = [root] {
         return story_colour(glass_pixel(root, 180, 200, 1).first);
     };
+    // stage 10: Monte Carlo convergence, the penumbra's noise, the lens's blur in soft.scene
+    all["stage10.sphere_light_share"] = [] { return sphere_light_table(); };
+    all["stage10.penumbra_noise"] = [] { return penumbra_noise_table(); };
+    all["stage10.soft.red_blur_pixels"] = [root] { return soft_blur_pixels(root, 1); };
+    all["stage10.soft.green_blur_pixels"] = [root] { return soft_blur_pixels(root, 2); };
     // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)
     all["stage04.showcase.group_items"] = [root] {
         return std::to_string(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene")).size());

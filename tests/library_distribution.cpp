@@ -14,6 +14,7 @@
 #include <rt/error.hpp>
 #include <rt/glossy.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/radiance.hpp>
 #include <rt/random.hpp>
 #include <rt/renderer.hpp>
@@ -114,7 +115,7 @@ TEST_CASE("without random numbers an area light is a point light at its centre (
     CHECK(c.intensity.r == doctest::Approx(1.0 / 9));
 }
 
-TEST_CASE("mirror_direction: a perfect mirror, and a glossy one without random numbers, reflect exactly; with them, above the surface")
+TEST_CASE("mirror_direction: a perfect mirror, and a glossy one without random numbers, reflect exactly, with them above the surface")
 {
     const rt::vec3 d = glm::normalize(rt::vec3(1, -1, 0)), n(0, 1, 0);
     rt::material m;

@@ -18,6 +18,7 @@
 #include <rt/accelerator.hpp>
 #include <rt/hit_record.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/offset.hpp>
 #include <rt/random.hpp>
 #include <rt/ray.hpp>

@@ -20,6 +20,7 @@
 #include <rt/accelerator.hpp>
 #include <rt/hit_record.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>
 #include <rt/shadows_fixed_epsilon.hpp>

@@ -15,6 +15,7 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/scene.hpp>
 #include <rt/shadows.hpp>
 

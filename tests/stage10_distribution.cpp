@@ -25,6 +25,7 @@
 #include <rt/camera.hpp> // rt::frame
 #include <rt/glossy.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/random.hpp>
 #include <rt/scene.hpp>
 #include <rt/thin_lens.hpp>

@@ -1,4 +1,5 @@
-// light.hpp - point, directional and area lights (used from stage 05 on).
+// light.hpp - point, directional and area lights, as a scene declares them
+// (used from stage 05 on; what one delivers to a point: light_sample.hpp).
 //
 // A point light shines from a position in every direction; a directional light
 // shines along one direction from infinitely far away (Fundamentals of Computer
@@ -7,11 +8,7 @@
 // point of it (area_light.hpp). Every light has an RGB intensity I.
 #pragma once
 
-#include <cmath>
-#include <limits>
-#include <optional>
-
-#include "area_light.hpp"
+#include "config.hpp"
 #include "vec.hpp"
 
 namespace rt {
@@ -32,48 +29,6 @@ struct light {
 inline bool is_area_light(const light& source)
 {
     return source.kind == light_kind::rect || source.kind == light_kind::sphere;
-}
-
-/// The point an area light shines from, seen from x: with random numbers xi,
-/// a random point of it (area_light.hpp); without, its centre, so that stages
-/// 05-09 see an area light as a point light there.
-inline vec3 area_light_point(const light& source, const vec3& x, const std::optional<vec2>& xi)
-{
-    if (source.kind == light_kind::rect)
-        return xi ? sample_rect_light(source.position, source.edge1, source.edge2, xi->x, xi->y)
-                  : source.position + real(0.5) * (source.edge1 + source.edge2);
-    return xi ? sample_sphere_light(source.position, source.radius, x, xi->x, xi->y) : source.position;
-}
-
-/// What one light delivers to a surface point x: the unit direction l from x
-/// towards the light, the distance to it (infinite for a directional light),
-/// and the intensity I arriving at x.
-struct light_sample {
-    vec3 l{0, 1, 0};
-    real distance = std::numeric_limits<real>::infinity();
-    color intensity{0.0f};
-};
-
-/// The light as seen from x. Point lights keep their intensity at any distance,
-/// as in the book (sec. 4.5); with `falloff` they fall off as I / r^2, the
-/// physical inverse-square law. An area light is the point light at
-/// area_light_point(source, x, xi).
-inline light_sample sample_light(const light& source, const vec3& x, bool falloff = false,
-                                 const std::optional<vec2>& xi = std::nullopt)
-{
-    light_sample sample;
-    if (source.kind == light_kind::directional) {
-        sample.l = -glm::normalize(source.direction);
-        sample.intensity = source.intensity;
-        return sample;
-    }
-    const vec3 to_light = (is_area_light(source) ? area_light_point(source, x, xi) : source.position) - x;
-    sample.distance = glm::length(to_light);
-    sample.l = sample.distance > 0 ? to_light / sample.distance : vec3(0, 1, 0);
-    sample.intensity = source.intensity;
-    if (falloff && sample.distance > 0)
-        sample.intensity /= float(sample.distance * sample.distance);
-    return sample;
 }
 
 } // namespace rt

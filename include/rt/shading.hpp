@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "hit_record.hpp"
-#include "light.hpp"
+#include "light_sample.hpp"
 #include "material.hpp"
 #include "random.hpp"
 #include "scene.hpp"

@@ -19,7 +19,7 @@
 #include <limits>
 
 #include "hit_record.hpp"
-#include "light.hpp"
+#include "light_sample.hpp"
 #include "offset.hpp" // the Ray Tracing Gems offset, which stage 06 compares with
 #include "ray.hpp"
 #include "spawn.hpp"

@@ -12,7 +12,7 @@
 #pragma once
 
 #include "hit_record.hpp"
-#include "light.hpp"
+#include "light_sample.hpp"
 #include "ray.hpp"
 #include "vec.hpp"
 

@@ -28,6 +28,7 @@
 
 #include <rt/hit_record.hpp>
 #include <rt/light.hpp>
+#include <rt/light_sample.hpp>
 #include <rt/ray.hpp>
 #include <rt/scene.hpp>
 #include <rt/vec.hpp>

@@ -106,7 +106,7 @@ if(STAGE STREQUAL "05")
   if(NOT count EQUAL 1)
     message(FATAL_ERROR "stage 05 traces no shadow ray: expected 1 query, found ${count}\n${json}")
   endif()
-elseif(STAGE STREQUAL "06" OR STAGE STREQUAL "07" OR STAGE STREQUAL "08" OR STAGE STREQUAL "09")
+elseif(STAGE STREQUAL "06" OR STAGE STREQUAL "07" OR STAGE STREQUAL "08" OR STAGE STREQUAL "09" OR STAGE STREQUAL "10")
   # the shadow ray towards the light at (0, 0, 10) is blocked by the small
   # sphere (shape 1) at its near side, (0, 0, 1.5); its t depends on how the
   # shadow ray is written (a unit direction, or a segment to the light)
