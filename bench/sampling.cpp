@@ -20,7 +20,7 @@
 // estimates, so its curve should lie on that one, slope -3/4. (Benchmarks are
 // built from the reference solution only; a student kit has none.)
 //
-// Scenes:
+// Scenes (bench_sampling NAME... runs only those named):
 //   edges     an analytic pattern seen by an orthographic camera: a checkerboard
 //             rotated by 20 degrees and a disc, every pixel's value a step
 //             function; nothing but edges and flat areas.
@@ -40,6 +40,7 @@
 #include <vector>
 
 #include <rt/camera.hpp>
+#include <rt/error.hpp>
 #include <rt/filter.hpp>
 #include <rt/pixel_sampling.hpp>
 #include <rt/random.hpp>
@@ -206,6 +207,22 @@ int main(int argc, char** argv)
             reference_spps.push_back(o.quick ? 256 : 4096);
         }
 #endif
+        // bench_sampling [SCENE...]: only the scenes named (edges, showcase, soft)
+        if (!o.extra.empty()) {
+            std::vector<scene_case> chosen;
+            std::vector<int> chosen_spps;
+            for (const std::string& name : o.extra) {
+                std::size_t k = 0;
+                while (k < cases.size() && cases[k].name != name)
+                    ++k;
+                if (k == cases.size())
+                    throw rt::error("expected a scene name (edges, showcase or soft), found '" + name + "'");
+                chosen.push_back(cases[k]);
+                chosen_spps.push_back(reference_spps[k]);
+            }
+            cases = chosen;
+            reference_spps = chosen_spps;
+        }
         const rt::sampler_kind samplers[] = {rt::sampler_kind::center, rt::sampler_kind::grid, rt::sampler_kind::random,
                                              rt::sampler_kind::jittered, rt::sampler_kind::halton};
         const rt::filter_kind filters[] = {rt::filter_kind::box, rt::filter_kind::tent, rt::filter_kind::gaussian,

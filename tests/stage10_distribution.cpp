@@ -88,14 +88,16 @@ double reach_share(const rt::light& source, const rt::vec3& x, const std::vector
     return double(reach) / n;
 }
 
-/// A camera frame built here (stage 02's make_frame is not called): w against
-/// the view direction, u and v across it.
-rt::frame frame_looking(const rt::vec3& view, const rt::vec3& up)
+/// A tilted camera frame: the axes turned by b about x, then by a about y
+/// (an orthonormal u, v, w, so that no axis is special).
+rt::frame turned_frame(double a, double b)
 {
+    const auto ca = rt::real(std::cos(a)), sa = rt::real(std::sin(a));
+    const auto cb = rt::real(std::cos(b)), sb = rt::real(std::sin(b));
     rt::frame f;
-    f.w = -glm::normalize(view);
-    f.u = glm::normalize(glm::cross(up, f.w));
-    f.v = glm::cross(f.w, f.u);
+    f.u = rt::vec3(ca, 0, -sa);
+    f.v = rt::vec3(sa * sb, cb, ca * sb);
+    f.w = rt::vec3(sa * cb, -sb, ca * cb);
     return f;
 }
 
@@ -188,9 +190,8 @@ TEST_CASE("sample_rect_light: an edge above the middle of the light hides exactl
 
 TEST_CASE("thin_lens_ray: each ray starts on the lens disk and meets its pinhole ray on the plane in focus")
 {
-    // a tilted camera, so that no axis is special
     const rt::vec3 e(1, 2, 3);
-    const rt::frame basis = frame_looking(rt::vec3(-3, -1.5f, -7), rt::vec3(0.2f, 1, 0));
+    const rt::frame basis = turned_frame(0.4, 0.25);
     const rt::real aperture = rt::real(0.25), focus = 6;
     uniform u;
     problems off;
@@ -223,7 +224,7 @@ TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confu
     // by similar triangles: the lens point e + aperture l and the point in
     // focus, followed to depth z, land aperture |l| |1 - z / f| from where the
     // pinhole ray is at that depth
-    const rt::frame basis = frame_looking(rt::vec3(0, 0, -1), rt::vec3(0, 1, 0));
+    const rt::frame basis; // u, v, w along x, y, z: the eye looks along -z
     const rt::ray pinhole{rt::vec3(0), rt::vec3(rt::real(0.1), rt::real(-0.05), -1)};
     const rt::real aperture = rt::real(0.2), focus = 4;
     uniform u;
