@@ -13,6 +13,7 @@ import csv
 import math
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -105,8 +106,9 @@ def plot_sampling(data, charts):
             ax.set_ylabel("RMSE against the reference")
         theory = ("every sampler -1/2: the light, lens and gloss samples are not stratified" if scene == "soft"
                   else "random -1/2, jittered -3/4")
-        fig.suptitle("Sampling on the '%s' scene: error against time (spp 1 .. 256; slopes of RMSE vs spp; "
-                     "theory: %s)" % (scene, theory), fontsize=9)
+        title = ("Sampling on the '%s' scene: error against time (spp 1 .. 256; slopes of RMSE vs spp; "
+                 "theory: %s)" % (scene, theory))
+        fig.suptitle(textwrap.fill(title, 75 if len(filters) == 1 else 140), fontsize=9)
         fig.tight_layout(rect=(0, 0.03, 1, 0.97))
         footer(fig, notes)
         save(fig, charts, "sampling-%s.png" % scene)
