@@ -246,7 +246,8 @@ TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confu
     }
     check_none(off, "expected the circle of confusion aperture |lens| |1 - z / focus|: a sharp plane in focus, blur "
                     "growing with the distance from it");
-    INFO("expected the rim of the lens (|lens| = 1) to reach the full circle, found at most " << widest << " of it");
+    INFO("expected the lens's rim (|lens| = 1) to land exactly on the circle of confusion, found the widest spot at "
+         << widest << " times its radius aperture |1 - z / focus|");
     CHECK(widest == doctest::Approx(1).epsilon(1e-4));
 }
 

@@ -841,9 +841,11 @@ def sync_kit(root: Path, plan: KitPlan, target: Path) -> int:
 
 def describe(plan: KitPlan) -> str:
     def stages_of(regions: List[Region]) -> str:
-        return ", ".join(stage_label(s) for s in sorted({r.stage for r in regions})) or "none"
-    return (f"{len(plan.files)} files; stripped {len(plan.stripped)} regions of stages "
-            f"{stages_of(plan.stripped)}; solved {len(plan.solved)} regions of stages {stages_of(plan.solved)}; "
+        stages = sorted({r.stage for r in regions})
+        word = "stage" if len(stages) == 1 else "stages"
+        return f"{word} " + (", ".join(stage_label(s) for s in stages) or "none")
+    return (f"{len(plan.files)} files; stripped {len(plan.stripped)} regions of {stages_of(plan.stripped)}; "
+            f"solved {len(plan.solved)} regions of {stages_of(plan.solved)}; "
             f"left out {len(plan.left_out)} instructor-only files")
 
 

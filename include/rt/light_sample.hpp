@@ -20,13 +20,16 @@ namespace rt {
 
 /// The point an area light shines from, seen from x: with random numbers xi,
 /// a random point of it (area_light.hpp); without, its centre, so that stages
-/// 05-09 see an area light as a point light there.
+/// 05-09 see an area light as a point light there. A point inside a sphere
+/// light (where no cone of directions covers it) sees it from its centre too.
 inline vec3 area_light_point(const light& source, const vec3& x, const std::optional<vec2>& xi)
 {
     if (source.kind == light_kind::rect)
         return xi ? sample_rect_light(source.position, source.edge1, source.edge2, xi->x, xi->y)
                   : source.position + real(0.5) * (source.edge1 + source.edge2);
-    return xi ? sample_sphere_light(source.position, source.radius, x, xi->x, xi->y) : source.position;
+    const vec3 from_center = x - source.position;
+    const bool outside = glm::dot(from_center, from_center) > source.radius * source.radius;
+    return xi && outside ? sample_sphere_light(source.position, source.radius, x, xi->x, xi->y) : source.position;
 }
 
 /// What one light delivers to a surface point x: the unit direction l from x

@@ -74,8 +74,9 @@ int main(int argc, char** argv)
         options.seed = seed;
         const rt::render_result out = stage::render_scene(s, rt::aov_kind::none, options, {});
         stage::save_image(output, out.pixels, 2.2f);
-        std::cerr << "stage10_distribution: wrote " << output << " (" << s.width << "x" << s.height << ", "
-                  << rt::effective_samples(options.sampler, options.samples_per_pixel) << " samples per pixel)\n";
+        const int samples = rt::effective_samples(options.sampler, options.samples_per_pixel);
+        std::cerr << "stage10_distribution: wrote " << output << " (" << s.width << "x" << s.height << ", " << samples
+                  << (samples == 1 ? " sample" : " samples") << " per pixel)\n";
         return 0;
     });
 }

@@ -176,6 +176,8 @@ inline std::optional<rt::vec3> point_on_light(const rt::light& source, const rt:
         const rt::vec3 d = glm::normalize(r.direction), oc = r.origin - source.position;
         const double half_b = double(glm::dot(oc, d));
         const double c = double(glm::dot(oc, oc)) - double(source.radius) * double(source.radius);
+        if (c <= 0) // a point inside the light sees it from its centre (light_sample.hpp)
+            return source.position;
         const double disc = half_b * half_b - c;
         if (disc < -1e-3 * double(source.radius) * double(source.radius))
             return std::nullopt;
