@@ -8,6 +8,8 @@
 // point of it (area_light.hpp). Every light has an RGB intensity I.
 #pragma once
 
+#include <limits>
+
 #include "config.hpp"
 #include "vec.hpp"
 
@@ -30,5 +32,14 @@ inline bool is_area_light(const light& source)
 {
     return source.kind == light_kind::rect || source.kind == light_kind::sphere;
 }
+
+/// What one light delivers to a surface point x: the unit direction l from x
+/// towards the light, the distance to it (infinite for a directional light),
+/// and the intensity I arriving at x.
+struct light_sample {
+    vec3 l{0, 1, 0};
+    real distance = std::numeric_limits<real>::infinity();
+    color intensity{0.0f};
+};
 
 } // namespace rt

@@ -1,5 +1,6 @@
-// light_sample.hpp - what one light delivers to a surface point (stage 05 on):
-// the direction to it, the distance, the intensity that arrives. Point and
+// light_sample.hpp - what one light delivers to a surface point (stage 05 on,
+// rt::light_sample in light.hpp): the direction to it, the distance, the
+// intensity that arrives. Point and
 // directional lights as in Fundamentals of Computer Graphics, 4th ed., sec.
 // 4.5; an area light (stage 10) as a point light at one point of it, random
 // for each sample (area_light.hpp, FCG sec. 13.4.2).
@@ -31,15 +32,6 @@ inline vec3 area_light_point(const light& source, const vec3& x, const std::opti
     const bool outside = glm::dot(from_center, from_center) > source.radius * source.radius;
     return xi && outside ? sample_sphere_light(source.position, source.radius, x, xi->x, xi->y) : source.position;
 }
-
-/// What one light delivers to a surface point x: the unit direction l from x
-/// towards the light, the distance to it (infinite for a directional light),
-/// and the intensity I arriving at x.
-struct light_sample {
-    vec3 l{0, 1, 0};
-    real distance = std::numeric_limits<real>::infinity();
-    color intensity{0.0f};
-};
 
 /// The light as seen from x. Point lights keep their intensity at any distance,
 /// as in the book (sec. 4.5); with `falloff` they fall off as I / r^2, the

@@ -15,6 +15,7 @@
 #include <rt/scene.hpp>
 #include <rt/shading.hpp>
 
+#include "light_terms.hpp"
 #include "pixel_story.hpp"
 #include "stage_main.hpp"
 #include "support.hpp"

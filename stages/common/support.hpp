@@ -104,6 +104,10 @@ public:
     bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const;
     bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const;
 
+    /// The accelerator itself, shared (rt::make_radiance takes it: a program
+    /// that renders through the world never compiles the BVH's build).
+    std::shared_ptr<const rt::accelerator> shared() const { return impl_; }
+
     /// "flat" or "bvh": what "auto" chose.
     std::string kind() const;
     /// How many primitives it holds (a mesh's triangles each count) and, for a BVH, its nodes.
@@ -111,7 +115,7 @@ public:
     std::size_t nodes() const;
 
 private:
-    std::unique_ptr<const rt::accelerator> impl_;
+    std::shared_ptr<const rt::accelerator> impl_;
 };
 
 /// A ray through a film position (pixels from the bottom-left corner).

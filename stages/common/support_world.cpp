@@ -6,7 +6,7 @@
 namespace stage {
 
 world::world(const rt::scene& s, const std::string& kind)
-    : impl_(std::make_unique<const rt::accelerator>(s, rt::parse_accelerator_kind(kind)))
+    : impl_(std::make_shared<const rt::accelerator>(s, rt::parse_accelerator_kind(kind)))
 {
 }
 
