@@ -138,7 +138,7 @@ TEST_CASE("sample_rect_light: every point lies on the parallelogram, spread unif
     CHECK(chi2 < 37.7);
 }
 
-TEST_CASE("sample_sphere_light: points on the half of the sphere the point sees, uniform in solid angle: a ball in between hides its closed-form share")
+TEST_CASE("sample_sphere_light: points on the cap of the sphere the point sees, uniform in solid angle: a ball in between hides its closed-form share")
 {
     // FCG 13.4.2 with PBR 3rd ed. 14.2.3: seen from x, the light (radius R at
     // distance D) fills a cone cos(theta_max) = sqrt(1 - R^2/D^2); a ball of
