@@ -138,13 +138,14 @@ TEST_CASE("sample_rect_light: every point lies on the parallelogram, spread unif
     CHECK(chi2 < 37.7);
 }
 
-TEST_CASE("sample_sphere_light: points on the cap of the sphere the point sees, uniform in solid angle: a ball in between hides its closed-form share")
+TEST_CASE("sample_sphere_light: points on the cap of the sphere the point sees, uniform in solid angle: a ball or a disc in between hides its closed-form share")
 {
     // FCG 13.4.2 with PBR 3rd ed. 14.2.3: seen from x, the light (radius R at
     // distance D) fills a cone cos(theta_max) = sqrt(1 - R^2/D^2); a ball of
     // radius a at distance h on the same axis hides the cone
     // cos(alpha) = sqrt(1 - a^2/h^2). Uniform in solid angle, the share of the
     // samples that reach the light is (cos(alpha) - cos(theta_max)) / (1 - cos(theta_max)).
+    // So does a disc of radius a at height h, with cos(alpha) = h / sqrt(h^2 + a^2).
     const double R = 1, D = 5, a = 0.3, h = 2;
     rt::light bulb;
     bulb.kind = rt::light_kind::sphere;
@@ -166,9 +167,22 @@ TEST_CASE("sample_sphere_light: points on the cap of the sphere the point sees, 
     check_none(off, "expected points on the sphere, on the part that x can see (the nearest hit of a ray from x)");
     const int total = 40000;
     const double cos_max = std::sqrt(1 - R * R / (D * D)), cos_alpha = std::sqrt(1 - a * a / (h * h));
-    check_fraction("the share of shadow rays that reach the light, uniform in solid angle,",
+    check_fraction("the share of shadow rays that reach the light past the ball, uniform in solid angle,",
                    reach_share(bulb, x, {rt::sphere{rt::vec3(0, 0, rt::real(h)), rt::real(a)}}, total),
                    (cos_alpha - cos_max) / (1 - cos_max), total);
+    // a disc of radius a at height h instead (crossed where the shadow ray
+    // meets the plane z = h): it hides the cone cos(alpha_d) = h / sqrt(h^2 + a^2)
+    uniform v;
+    int reach = 0;
+    for (int k = 0; k < total; ++k) {
+        const rt::real xi1 = v(), xi2 = v();
+        const rt::vec3 l = rt::sample_light(bulb, x, false, rt::vec2(xi1, xi2)).l;
+        const double s = h / double(l.z), across = s * std::hypot(double(l.x), double(l.y));
+        reach += across > a ? 1 : 0;
+    }
+    const double cos_disc = h / std::sqrt(h * h + a * a);
+    check_fraction("the share of shadow rays that pass a disc of radius 0.3 at height 2, uniform in solid angle,",
+                   double(reach) / total, (cos_disc - cos_max) / (1 - cos_max), total);
 }
 
 TEST_CASE("sample_rect_light: an edge above the middle of the light hides exactly half of it (the penumbra's middle)")
