@@ -115,7 +115,8 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
             const real xi1 = context.rng.next_float(), xi2 = context.rng.next_float();
             r = thin_lens_ray(pinhole, basis, shaded->lens.aperture, shaded->lens.focus, concentric_disk(xi1, xi2));
         }
-        const color L = glass ? ray_color_glass(*shaded, counted, r, 0, options) : ray_color(*shaded, counted, r, 0, options);
+        const color L =
+            glass ? ray_color_glass(*shaded, counted, r, 0, options) : ray_color(*shaded, counted, r, 0, options);
         context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count
         return L;
     };
