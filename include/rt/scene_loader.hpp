@@ -82,8 +82,9 @@ inline int find_material(const scene& s, statement& line)
 
 inline const std::vector<std::string>& keywords()
 {
-    static const std::vector<std::string> words = {"image",   "camera",     "material", "sphere",    "triangle", "mesh",
-                                                   "light",   "ambient",    "background", "samples", "max_depth", "lens"};
+    static const std::vector<std::string> words = {"image",   "camera",     "material", "sphere",  "triangle",
+                                                   "mesh",    "light",      "ambient",  "background",
+                                                   "samples", "max_depth",  "lens"};
     return words;
 }
 
@@ -116,7 +117,8 @@ public:
         if (lens_at_) {
             if (result_.cam.kind != projection::perspective && result_.lens.aperture > 0)
                 throw parse_error(*lens_at_, "a lens in front of a perspective camera", "an orthographic camera",
-                                  "a thin lens focuses a perspective camera's rays; use aperture 0 or a perspective camera");
+                                  "a thin lens focuses a perspective camera's rays; "
+                                  "use aperture 0 or a perspective camera");
             if (!focus_given_) // in focus where the camera looks
                 result_.lens.focus = glm::length(result_.cam.look_at - result_.cam.eye);
         }
@@ -395,21 +397,24 @@ private:
     void read_lens(statement& line)
     {
         if (lens_at_)
-            throw parse_error(line.line_start(), "one lens", "a second lens statement", "a camera has one lens; delete one");
+            throw parse_error(line.line_start(), "one lens", "a second lens statement",
+                              "a camera has one lens; delete one");
         lens_at_ = line.line_start();
         line.options({"aperture", "focus"}, [&](const std::string& option) {
             const source_location where = line.here();
             if (option == "aperture") {
-                result_.lens.aperture = line.number("the lens radius (aperture)");
-                if (!(result_.lens.aperture >= 0))
-                    throw parse_error(where, "an aperture of 0 or more", detail::short_number(double(result_.lens.aperture)),
+                const real aperture = line.number("the lens radius (aperture)");
+                if (!(aperture >= 0))
+                    throw parse_error(where, "an aperture of 0 or more", detail::short_number(double(aperture)),
                                       "it is the lens radius; 0 is a pinhole");
+                result_.lens.aperture = aperture;
             } else {
-                result_.lens.focus = line.number("the focus distance");
-                focus_given_ = true;
-                if (!(result_.lens.focus > 0))
-                    throw parse_error(where, "a positive focus distance", detail::short_number(double(result_.lens.focus)),
+                const real focus = line.number("the focus distance");
+                if (!(focus > 0))
+                    throw parse_error(where, "a positive focus distance", detail::short_number(double(focus)),
                                       "it is the distance from the eye to the plane in focus");
+                result_.lens.focus = focus;
+                focus_given_ = true;
             }
         });
     }
