@@ -1,8 +1,9 @@
 // library_distribution.cpp - the given part of stage 10: the scene statements
 // for area lights, the lens and glossy mirrors; the concentric disk map;
 // area lights without random numbers (stages 05-09 see a point light at the
-// centre); mirror_direction; and the renderer's thin lens, which keeps the
-// plane in focus exactly as sharp as a pinhole camera. Stage 10's exercises are
+// centre); mirror_direction; the renderer's thin lens, which keeps the plane
+// in focus exactly as sharp as a pinhole camera; and the renderer's soft
+// shadow, whose pixel average converges to the light's integral. Stage 10's exercises are
 // tested in tests/stage10_distribution.cpp.
 #include "rt_doctest.hpp"
 
@@ -178,4 +179,44 @@ TEST_CASE("the renderer's thin lens: a plane in focus comes out exactly as with 
     const rt::image far_pinhole = image_of(6, 0), blurred = image_of(6, 0.3);
     INFO("pixels that differ with the wall at 3 times the focus distance: " << differing(far_pinhole, blurred));
     CHECK(differing(far_pinhole, blurred) > 8);
+}
+
+TEST_CASE("the renderer's soft shadow: a pixel under a half-hidden square light converges to the light's integral")
+{
+    // The pixel sees the floor point p = (0, 0, 0) (orthographic, a window of
+    // 2e-3 around it), white (kd 1, no ambient), under the square light
+    // [-1, 1] x [-1, 1] at height 4 (intensity 1, no falloff); a large
+    // triangle at height 2 hides every light point with x < 0. One sample's
+    // colour is kd I max(0, n.l) for its random light point when that point is
+    // visible, so the pixel's mean over N samples tends to
+    //     E = (1 / area) integral over the light of [x > 0] 4 / |y - p| dA,
+    // computed here by the midpoint rule, and its standard deviation is
+    // sqrt((E2 - E^2) / N) with E2 the mean of the square.
+    rt::scene s = rt::load_scene_from_string(
+        "image 1 1\ncamera orthographic eye 0 1 0 look_at 0 0 0 up 0 0 -1 window -0.001 0.001 -0.001 0.001\n"
+        "ambient 0 0 0\nmaterial white ka 0 0 0 kd 1 1 1\nmaterial black ka 0 0 0 kd 0 0 0\n"
+        "triangle -50 0 -50  -50 0 50  50 0 50 material white\ntriangle -50 0 -50  50 0 50  50 0 -50 material white\n"
+        "triangle 0 2 -1000  -1000 2 0  0 2 1000 material black\n"
+        "light rect corner -1 4 -1 edge1 2 0 0 edge2 0 0 2 intensity 1 1 1\n");
+    double E = 0, E2 = 0;
+    const int n = 1000;
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < n; ++k) {
+            const double x = -1 + 2 * (i + 0.5) / n, z = -1 + 2 * (k + 0.5) / n;
+            const double term = x > 0 ? 4 / std::sqrt(x * x + 16 + z * z) : 0;
+            E += term;
+            E2 += term * term;
+        }
+    E /= double(n) * n;
+    E2 /= double(n) * n;
+    rt::render_options o;
+    o.width = o.height = 1;
+    o.samples_per_pixel = 4096;
+    o.threads = 1;
+    const rt::image out =
+        rt::render(o, rt::camera_rays(s.cam, 1, 1), rt::make_radiance(s, rt::aov_kind::none)).pixels;
+    const double got = double(out.at(0, 0).r), sigma = std::sqrt((E2 - E * E) / o.samples_per_pixel);
+    INFO("expected the pixel to average the half-visible light, " << E << " (5 sigma = " << 5 * sigma << "), found "
+                                                                   << got << "; " << (got - E) / sigma << " sigma away");
+    CHECK(std::fabs(got - E) < 5 * sigma);
 }
