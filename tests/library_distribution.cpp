@@ -3,8 +3,8 @@
 // area lights without random numbers (stages 05-09 see a point light at the
 // centre); mirror_direction; the renderer's thin lens, which keeps the plane
 // in focus exactly as sharp as a pinhole camera; and the renderer's soft
-// shadow, whose pixel average converges to the light's integral. Stage 10's exercises are
-// tested in tests/stage10_distribution.cpp.
+// shadow, whose pixel average converges to the light's integral. Stage 10's
+// exercises are tested in tests/stage10_distribution.cpp.
 #include "rt_doctest.hpp"
 
 #include <cmath>
