@@ -97,8 +97,10 @@ int main(int argc, char** argv)
                     ray_count = std::max<std::size_t>(64, std::min(max_rays, std::size_t(budget / double(n))));
                 rt::pcg32 rng(7, 9);
                 std::vector<rt::ray> rays(ray_count);
-                for (rt::ray& r : rays)
-                    r = rt::generate_ray(gen, real(512 * rng.next_float()), real(512 * rng.next_float()));
+                for (rt::ray& r : rays) {
+                    const real x = real(512 * rng.next_float()), y = real(512 * rng.next_float());
+                    r = rt::generate_ray(gen, x, y);
+                }
                 double build = 1e300;
                 for (int k = 0; k < repeats; ++k) {
                     const auto start = bench::clock::now();

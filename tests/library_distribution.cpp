@@ -84,7 +84,8 @@ TEST_CASE("concentric_disk maps the square onto the unit disk, keeping areas")
     const int n = 40000;
     int outside = 0, inner = 0;
     for (int k = 0; k < n; ++k) {
-        const rt::vec2 p = rt::concentric_disk(rng.next_float(), rng.next_float());
+        const rt::real xi1 = rng.next_float(), xi2 = rng.next_float();
+        const rt::vec2 p = rt::concentric_disk(xi1, xi2);
         outside += glm::length(p) > 1 + 1e-6f ? 1 : 0;
         inner += glm::length(p) < 0.5f ? 1 : 0; // a quarter of the disk's area
     }

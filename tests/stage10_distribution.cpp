@@ -211,9 +211,13 @@ TEST_CASE("thin_lens_ray: each ray starts on the lens disk and meets its pinhole
     problems off;
     for (int k = 0; k < 400; ++k) {
         // pinhole rays through a spread of the film (direction -d w + u u + v v)
-        const rt::vec3 d = -basis.w + (u() - rt::real(0.5)) * basis.u + (u() - rt::real(0.5)) * basis.v;
+        // one draw per statement, so that every compiler draws in the same order
+        const rt::real across = u() - rt::real(0.5);
+        const rt::real up = u() - rt::real(0.5);
+        const rt::vec3 d = -basis.w + across * basis.u + up * basis.v;
         const rt::ray pinhole{e, d};
-        const rt::vec2 lens = rt::concentric_disk(u(), u());
+        const rt::real lens1 = u(), lens2 = u();
+        const rt::vec2 lens = rt::concentric_disk(lens1, lens2);
         const rt::ray r = rt::thin_lens_ray(pinhole, basis, aperture, focus, lens);
         // where each ray meets the plane in focus: progress `focus` along -w from e
         const rt::vec3 sharp = e + (focus / -glm::dot(d, basis.w)) * d;
@@ -246,7 +250,8 @@ TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confu
     double widest = 0;
     const std::vector<rt::vec2> rim = {rt::vec2(1, 0), rt::vec2(0, 1), rt::vec2(-1, 0), rt::vec2(0.6f, -0.8f)};
     for (int k = 0; k < 1000; ++k) {
-        const rt::vec2 lens = k < int(rim.size()) ? rim[std::size_t(k)] : rt::concentric_disk(u(), u());
+        const rt::real lens1 = u(), lens2 = u();
+        const rt::vec2 lens = k < int(rim.size()) ? rim[std::size_t(k)] : rt::concentric_disk(lens1, lens2);
         const rt::ray r = rt::thin_lens_ray(pinhole, basis, aperture, focus, lens);
         for (const double z : {2.0, 8.0}) {
             const double t = (z + double(r.origin.z)) / double(-r.direction.z);

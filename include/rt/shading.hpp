@@ -55,8 +55,13 @@ color direct_lighting(const scene& s, const hit_record& hit, const vec3& d, Visi
     const vec3 v = -glm::normalize(d);
     for (const light& source : s.lights) {
         std::optional<vec2> xi;
-        if (options.random && is_area_light(source))
-            xi = vec2(options.random->next_float(), options.random->next_float());
+        if (options.random && is_area_light(source)) {
+            // two statements: the order of a call's arguments is unspecified, and
+            // the image must not depend on the compiler
+            const real xi1 = options.random->next_float();
+            const real xi2 = options.random->next_float();
+            xi = vec2(xi1, xi2);
+        }
         const light_sample sample = sample_light(source, hit.point, options.light_falloff, xi);
         if (glm::dot(hit.geometric_normal, sample.l) <= 0)
             continue; // the light is behind the surface: it cannot light this side
