@@ -1,13 +1,11 @@
 // light_sample.hpp - what one light delivers to a surface point (stage 05 on,
 // rt::light_sample in light.hpp): the direction to it, the distance, the
-// intensity that arrives. Point and
-// directional lights as in Fundamentals of Computer Graphics, 4th ed., sec.
-// 4.5; an area light (stage 10) as a point light at one point of it, random
-// for each sample (area_light.hpp, FCG sec. 13.4.2).
+// intensity that arrives. Point and directional lights as in Fundamentals of
+// Computer Graphics, 4th ed., sec. 4.5; an area light (stage 10) as a point
+// light at one point of it, random for each sample (area_light.hpp, FCG sec.
+// 13.4.2).
 #pragma once
 
-#include <cmath>
-#include <limits>
 #include <optional>
 
 #include <glm/geometric.hpp>

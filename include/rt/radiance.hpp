@@ -19,6 +19,7 @@
 #include "glossy.hpp"
 #include "hit_record.hpp"
 #include "ray.hpp"
+#include "random.hpp"
 #include "ray_image.hpp"
 #include "raytracer.hpp"
 #include "renderer.hpp"
@@ -40,6 +41,19 @@ inline ray_source camera_rays(const camera& cam, int nx, int ny)
 {
     const ray_generator gen = make_ray_generator(cam, nx, ny);
     return [gen](real x, real y) { return generate_ray(gen, x, y); };
+}
+
+/// The camera ray of one sample through the thin lens of scene s (stage 10):
+/// for a perspective camera with s.lens.aperture > 0, the pinhole ray moved
+/// onto a random point of the lens (two numbers drawn from `random`), aimed
+/// at the plane in focus; the pinhole ray itself otherwise (nothing drawn).
+inline ray lens_ray(const scene& s, const ray& pinhole, pcg32& random)
+{
+    if (!(s.lens.aperture > 0) || s.cam.kind != projection::perspective)
+        return pinhole;
+    const frame basis = make_frame(s.cam.eye, s.cam.look_at, s.cam.up);
+    const real xi1 = random.next_float(), xi2 = random.next_float();
+    return thin_lens_ray(pinhole, basis, s.lens.aperture, s.lens.focus, concentric_disk(xi1, xi2));
 }
 
 /// An accelerator seen through a counter of the queries made with it, so a
@@ -109,12 +123,7 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
         // each area light and its glossy reflections
         shading_options options;
         options.random = &context.rng;
-        ray r = pinhole;
-        if (shaded->lens.aperture > 0 && shaded->cam.kind == projection::perspective) { // stage 10's thin lens
-            const frame basis = make_frame(shaded->cam.eye, shaded->cam.look_at, shaded->cam.up);
-            const real xi1 = context.rng.next_float(), xi2 = context.rng.next_float();
-            r = thin_lens_ray(pinhole, basis, shaded->lens.aperture, shaded->lens.focus, concentric_disk(xi1, xi2));
-        }
+        const ray r = lens_ray(*shaded, pinhole, context.rng);
         const color L =
             glass ? ray_color_glass(*shaded, counted, r, 0, options) : ray_color(*shaded, counted, r, 0, options);
         context.rays += traced - 1; // the camera ray (the first query) is the renderer's own count

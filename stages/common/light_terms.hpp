@@ -92,13 +92,11 @@ void explain_lights(story& s, const rt::scene& sc, bool shadows, bool falloff, S
                 const std::optional<rt::vec3> aimed =
                     next_any < s.queries.size() ? point_on_light(sc.lights[n], s.queries[next_any].r) : std::nullopt;
                 t.behind = !aimed;
-                if (aimed) {
-                    const rt::vec3 to = *aimed - q.rec.point;
-                    t.sample.distance = glm::length(to);
-                    t.sample.l = to / t.sample.distance;
-                    t.sample.intensity = sc.lights[n].intensity;
-                    if (falloff)
-                        t.sample.intensity /= float(t.sample.distance * t.sample.distance);
+                if (aimed) { // for this sample, a point light there
+                    rt::light at = sc.lights[n];
+                    at.kind = rt::light_kind::point;
+                    at.position = *aimed;
+                    t.sample = rt::sample_light(at, q.rec.point, falloff);
                 }
             }
             if (!t.behind && shadows) {

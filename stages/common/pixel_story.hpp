@@ -16,8 +16,6 @@
 // from the recorded hits, with the student's blinn_phong.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <ostream>

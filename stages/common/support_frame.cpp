@@ -10,7 +10,6 @@
 #include <rt/radiance.hpp>
 #include <rt/raytracer.hpp>
 #include <rt/shading.hpp>
-#include <rt/thin_lens.hpp>
 
 #include "light_terms.hpp"
 #include "support.hpp"
@@ -52,10 +51,7 @@ story shaded_story(const rt::scene& s, const std::string& program, int column, i
                                             rt::integrator_stream);
     rt::shading_options options;
     options.random = &random;
-    if (s.lens.aperture > 0 && s.cam.kind == rt::projection::perspective) {
-        const rt::real xi1 = random.next_float(), xi2 = random.next_float();
-        st.camera = rt::thin_lens_ray(st.camera, gen.basis, s.lens.aperture, s.lens.focus, rt::concentric_disk(xi1, xi2));
-    }
+    st.camera = rt::lens_ray(s, st.camera, random);
     const recording<world> traced(w, st.queries);
     st.linear = rt::has_dielectric(s) || rt::has_glossy(s) ? rt::ray_color_glass(s, traced, st.camera, 0, options)
                                                            : rt::ray_color(s, traced, st.camera, 0, options);
