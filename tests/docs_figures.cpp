@@ -662,6 +662,11 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     // stage 10: Monte Carlo convergence, the penumbra's noise, the lens's blur in soft.scene
     all["stage10.sphere_light_share"] = [] { return sphere_light_table(); };
     all["stage10.penumbra_noise"] = [] { return penumbra_noise_table(); };
+    // the share of the shadow rays that pass a disc of radius 0.3 at height 2 (the test's closed form)
+    all["stage10.disc_share"] = [] {
+        const double cos_max = std::sqrt(1 - 1.0 / 25), cos_disc = 2 / std::sqrt(4 + 0.09);
+        return formatted("%.6f", (cos_disc - cos_max) / (1 - cos_max));
+    };
     all["stage10.soft.red_blur_pixels"] = [root] { return soft_blur_pixels(root, 1); };
     all["stage10.soft.green_blur_pixels"] = [root] { return soft_blur_pixels(root, 2); };
     // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)
