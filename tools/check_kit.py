@@ -18,7 +18,10 @@
 4. For each stage with exercise regions, a kit with only that stage stripped: its cases fail
    as above, every case of every other stage passes; its own stage program exits 3 naming
    the stage and every earlier stage's program exits 0 (a program runs the student's code of
-   its stage and earlier ones, nothing later).
+   its stage and earlier ones, nothing later). These kits are one build, the switchable kit
+   (make_kit.switchable_plan: every region solved, and RT_KIT_STRIP=N makes those a kit
+   stripping stage N strips throw its not-done message), run once per stage: about 45 s a
+   stage instead of 100-180 s for a build of each kit. --real-kits builds each kit instead.
 A failing case of stage k that names another stage's exercise is a bug in that test (it
 calls another stage's exercise) and is reported by name. A library case (tests/library_*,
 never graded) passes, or fails only with the not-done message of a stage the kit strips: the
@@ -108,10 +111,11 @@ class Builder:
         return run(["cmake", "--build", str(self.build), "-j", str(self.jobs), "--target", *names])
 
 
-def run(args: Sequence[str], cwd: Optional[Path] = None, timeout: Optional[float] = None) -> Tuple[bool, str]:
+def run(args: Sequence[str], cwd: Optional[Path] = None, timeout: Optional[float] = None,
+        env: Optional[Dict[str, str]] = None) -> Tuple[bool, str]:
     try:
         p = subprocess.run(list(args), cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           timeout=timeout)
+                           timeout=timeout, env=env)
         return p.returncode == 0, p.stdout.decode("utf-8", "replace")
     except subprocess.TimeoutExpired as e:
         return False, (e.stdout or b"").decode("utf-8", "replace") + f"\n(timed out after {timeout} s)"
@@ -142,12 +146,13 @@ def program_targets(root: Path) -> List[Tuple[str, Path]]:
     return out
 
 
-def run_ctest(build: Path, jobs: int, timeout: int, junit: Path) -> Tuple[List[CaseResult], str]:
+def run_ctest(build: Path, jobs: int, timeout: int, junit: Path,
+              env: Optional[Dict[str, str]] = None) -> Tuple[List[CaseResult], str]:
     """Runs every test but the tools' own (label tools: CI's ordinary ctest run has them)."""
     if junit.exists():
         junit.unlink()
     _, out = run(["ctest", "--test-dir", str(build), "-j", str(jobs), "--timeout", str(timeout),
-                  "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error"])
+                  "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error"], env=env)
     if not junit.is_file():
         return [], out
     cases = []
@@ -229,12 +234,13 @@ def first_line(output: str) -> str:
     return lines[-1] if lines else "(no output)"
 
 
-def run_program(exe: Path, scene: Path, timeout: int = 300) -> Tuple[Optional[int], str]:
+def run_program(exe: Path, scene: Path, timeout: int = 300,
+                env: Optional[Dict[str, str]] = None) -> Tuple[Optional[int], str]:
     """Runs a stage program on `scene` in an empty folder: (exit code, stderr), or
     (None, what went wrong) when it did not finish."""
     with tempfile.TemporaryDirectory() as cwd:
         try:
-            p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=timeout)
+            p = subprocess.run([str(exe), str(scene)], cwd=cwd, capture_output=True, timeout=timeout, env=env)
         except subprocess.TimeoutExpired:
             return None, f"still running after {timeout} s"
     return p.returncode, p.stderr.decode("utf-8", "replace").strip()
@@ -267,7 +273,8 @@ def check_programs(report: KitReport, kit: Path, build: Path) -> None:
                                    f"{code}: {err[-300:] or '(no message)'}")
 
 
-def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) -> None:
+def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int,
+                       env: Optional[Dict[str, str]] = None) -> None:
     """A kit with only `stage` stripped: every program runs the student's code of its own
     stage and earlier ones, and nothing later. So the stage's own program exits 3 naming
     the stage, and every earlier stage's program exits 0 (it reaches no stripped code)."""
@@ -281,7 +288,7 @@ def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) ->
         if not exe.is_file():
             report.problems.append(f"{target}: not built")
             continue
-        code, err = run_program(exe, scene)
+        code, err = run_program(exe, scene, env=env)
         if code is None:
             report.problems.append(f"{target}: {err}")
             continue
@@ -299,6 +306,49 @@ def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int) ->
         report.notes.append(f"programs of stages before {stage:02d} exit 0, stage {stage:02d}'s exits 3")
 
 
+# The per-stage kits' build: tests and stage programs only (the kit with every
+# stage stripped has built the benchmarks, the header check and the viewer).
+PER_STAGE_OPTIONS = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_SDL2=ON"]
+
+
+def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: List[Tuple[str, Set[int]]],
+                     args: argparse.Namespace, work: Path, region_messages: Dict[str, int]) -> List[KitReport]:
+    """The per-stage kits from one build: the switchable kit (make_kit.switchable_plan)
+    has every region solved, and RT_KIT_STRIP=N makes the regions a kit stripping
+    stage N would strip throw that kit's not-done message instead. Each stage's
+    tests and programs then run as in its own kit, without ten builds of the tree.
+    (A kit that strips one stage compiles if the reference and the kit that strips
+    every stage do: a region is either its reference body or its stub.)"""
+    reports: List[KitReport] = []
+    t0 = time.monotonic()
+    plan = make_kit.switchable_plan(source)
+    make_kit.sync_kit(source, plan, kit)
+    builder.extra = PER_STAGE_OPTIONS
+    builder.configured = False
+    (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
+    ok, out = builder.targets(["all"])
+    built = time.monotonic() - t0
+    log(f"check_kit: the switchable kit built in {built:.0f} s")
+    for name, stripped in per_stage:
+        report = KitReport(name)
+        t1 = time.monotonic()
+        if not ok:
+            report.problems.append(f"build of the switchable kit failed (-Werror): {first_error(out)}")
+        else:
+            env = dict(os.environ, RT_KIT_STRIP=",".join(str(s) for s in sorted(stripped)))
+            cases, ctest_out = run_ctest(kit / "build", args.jobs, args.timeout,
+                                         work / f"switchable-{min(stripped):02d}.xml", env)
+            if not cases:
+                report.problems.append(f"no test ran: {first_error(ctest_out)}")
+            real = make_kit.plan_kit(source, stripped)  # which regions that kit strips
+            judge(report, cases, {r.stage for r in real.stripped}, region_messages)
+            check_program_rule(report, kit, kit / "build", next(iter(stripped)), env)
+        report.seconds = time.monotonic() - t1
+        reports.append(report)
+        print_report(report)
+    return reports
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--source", default=str(make_kit.DEFAULT_SOURCE), help="the reference repository")
@@ -307,6 +357,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--no-reference", action="store_true", help="skip building and testing the reference")
     parser.add_argument("--no-clang", action="store_true", help="skip the clang++ build of the stripped kit")
     parser.add_argument("--timeout", type=int, default=300, help="seconds per test case (ctest --timeout)")
+    parser.add_argument("--real-kits", action="store_true",
+                        help="check each per-stage kit as make_kit writes it (one build per kit) instead of "
+                             "the switchable kit (one build, stages stripped at run time)")
     parser.add_argument("--only", metavar="N[,N...]",
                         help="only these per-stage kits, without the kit of every stage stripped (while "
                              "working on a stage; CI checks them all)")
@@ -365,14 +418,17 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     clang = None if args.no_clang or not shutil.which("clang++") else Builder(kit, kit / "build-clang", args.jobs, "clang++")
     if clang is not None:
         clang.extra = ["-DRT_HEADER_CHECK=ON"]
-    plans = [("all stages stripped", set(all_stages))] + \
-            [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
+    per_stage = [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
+    plans = [("all stages stripped", set(all_stages))]
     if args.only:
         chosen = {int(x) for x in args.only.split(",") if x.strip()}
-        plans = [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions if s in chosen]
-        builder.extra = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_SDL2=ON"]
+        per_stage = [(name, stripped) for name, stripped in per_stage if stripped <= chosen]
+        plans = []
+        builder.extra = PER_STAGE_OPTIONS
         (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
         clang = None
+    if args.real_kits:
+        plans += per_stage
     for name, stripped in plans:
         report = KitReport(name)
         t0 = time.monotonic()
@@ -405,7 +461,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             # The viewer too: it has shown it compiles, no kit check runs it on student
             # code, and most exercise headers reach its one large file (about 40 s a kit).
             # Its old binary goes, so no test runs it with another kit's headers.
-            builder.extra = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_SDL2=ON"]
+            builder.extra = PER_STAGE_OPTIONS
             builder.configured = False
             (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
         if first and clang is not None:
@@ -417,6 +473,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         report.seconds = time.monotonic() - t0
         reports.append(report)
         print_report(report)
+
+    if not args.real_kits and per_stage:
+        reports += check_switchable(source, kit, builder, per_stage, args, work, region_messages)
 
     # every exercise reached by at least one failing case (a warning: a case stops at
     # the first exercise it meets, so an exercise may be hidden behind another)

@@ -672,6 +672,84 @@ def stripped_body(region: Region, doc: Optional[str]) -> List[str]:
     return lines
 
 
+def switchable_body(region: Region, doc: Optional[str], body: List[str]) -> List[str]:
+    """check_kit's switchable kit: the region's own body, after a test that throws its
+    not-done message when RT_KIT_STRIP names its stage (or a stage it repeats)."""
+    ind = region.indent
+    stages = ", ".join(str(s) for s in [region.stage] + list(region.repeats))
+    lines = [f"{ind}if (rt::kit_check_strips({{{stages}}})) {{"]
+    for name, pack in region.parameters:
+        lines.append(f"{ind}    ((void){name}, ...);" if pack else f"{ind}    (void){name};")
+    lines.append(f"{ind}    throw rt::exercise_not_done({cxx_string(not_done_message(region, doc))});")
+    lines.append(f"{ind}}}")
+    return lines + body
+
+
+# Appended to the switchable kit's include/rt/error.hpp (check_kit only, never a student's kit).
+KIT_CHECK_SWITCH = """
+// check_kit's switchable kit: RT_KIT_STRIP=5 (or 5,7) makes the exercises of
+// those stages throw their not-done message, as a kit that strips them would.
+#include <cstdlib>
+#include <initializer_list>
+
+namespace rt {
+
+inline bool kit_check_strips(std::initializer_list<int> stages)
+{
+    static const unsigned long chosen = [] {
+        unsigned long mask = 0;
+        const char* text = std::getenv("RT_KIT_STRIP");
+        while (text != nullptr && *text != '\\0') {
+            char* end = nullptr;
+            const long stage = std::strtol(text, &end, 10);
+            if (end == text)
+                break;
+            if (stage >= 0 && stage < 64)
+                mask |= 1ul << stage;
+            text = *end == ',' ? end + 1 : end;
+        }
+        return mask;
+    }();
+    for (const int stage : stages)
+        if ((chosen >> stage) & 1ul)
+            return true;
+    return false;
+}
+
+} // namespace rt
+"""
+
+
+def switchable_text(rel: str, text: str, regions: List[Region], doc_of: Dict[int, Optional[str]]) -> str:
+    """`text` with each of `regions` (all of this file) made switchable (switchable_body)."""
+    if not regions:
+        return text
+    lines = text.split("\n")
+    for region in sorted(regions, key=lambda r: r.begin_line, reverse=True):
+        body = lines[region.begin_line:region.end_line - 1]
+        lines[region.begin_line:region.end_line - 1] = switchable_body(region, doc_of.get(region.stage), body)
+    text = "\n".join(lines)
+    if not re.search(r'^\s*#\s*include\s*[<"]([\w./]*/)?(rt/)?error\.hpp[>"]', text, re.MULTILINE):
+        text = _with_error_include(rel, text)
+    return text
+
+
+def switchable_plan(root: Path) -> KitPlan:
+    """A kit with every region solved but switchable at run time (see switchable_body):
+    one build stands for every per-stage kit in check_kit."""
+    plan = plan_kit(root, set())
+    doc_of = {s: stage_doc(root, s) for s in known_stages(root)}
+    by_file: Dict[str, List[Region]] = {}
+    for r in plan.solved:
+        by_file.setdefault(r.path, []).append(r)
+    for rel, file_regions in by_file.items():
+        plan.contents[rel] = switchable_text(rel, (root / rel).read_text(encoding="utf-8"), file_regions, doc_of)
+    error_hpp = "include/rt/error.hpp"
+    plan.contents[error_hpp] = plan.contents.get(error_hpp, (root / error_hpp).read_text(encoding="utf-8")) + \
+        KIT_CHECK_SWITCH
+    return plan
+
+
 def _error_header_include(rel: str) -> str:
     """How a file at `rel` includes rt/error.hpp."""
     if rel.startswith("include/rt/") and rel.count("/") == 2:
@@ -692,22 +770,28 @@ def strip_text(rel: str, text: str, regions: List[Region], doc_of: Dict[int, Opt
         lines[region.begin_line:region.end_line - 1] = body
     stripped = "\n".join(lines)
     if not re.search(r'^\s*#\s*include\s*[<"]([\w./]*/)?(rt/)?error\.hpp[>"]', stripped, re.MULTILINE):
-        out = stripped.split("\n")
-        at, in_comment = 0, False
-        for k, l in enumerate(out):  # after the last #include of the file's opening block
-            bare = l.strip()
-            if in_comment:
-                in_comment = "*/" not in bare
-                continue
-            if bare.startswith("/*"):
-                in_comment = "*/" not in bare
-                continue
-            if re.match(r"#\s*(include|pragma\s+once)\b", bare):
-                at = k + 1
-            elif bare and not bare.startswith("//") and not bare.startswith("#"):
-                break
-        out.insert(at, _error_header_include(rel))
-        stripped = "\n".join(out)
+        stripped = _with_error_include(rel, stripped)
+    return stripped
+
+
+def _with_error_include(rel: str, stripped: str) -> str:
+    """`stripped` with rt/error.hpp included after the last #include of its opening block."""
+    out = stripped.split("\n")
+    at, in_comment = 0, False
+    for k, l in enumerate(out):  # after the last #include of the file's opening block
+        bare = l.strip()
+        if in_comment:
+            in_comment = "*/" not in bare
+            continue
+        if bare.startswith("/*"):
+            in_comment = "*/" not in bare
+            continue
+        if re.match(r"#\s*(include|pragma\s+once)\b", bare):
+            at = k + 1
+        elif bare and not bare.startswith("//") and not bare.startswith("#"):
+            break
+    out.insert(at, _error_header_include(rel))
+    stripped = "\n".join(out)
     return stripped
 
 

@@ -501,6 +501,56 @@ class StrippedBodiesCompile(unittest.TestCase):
                     self.assertEqual(p.returncode, 0, p.stderr)
 
 
+class SwitchableKit(unittest.TestCase):
+    """check_kit's switchable kit: every body kept, thrown past only for the stages RT_KIT_STRIP names."""
+
+    def test_the_switchable_fixture_builds_and_strips_only_the_chosen_stages(self):
+        text = textwrap.dedent(StrippedBodiesCompile.SOURCE).lstrip("\n")
+        regions, errors = scan(text, path="include/rt/fixture.hpp")
+        self.assertEqual(errors, [])
+        regions[0].repeats = [2]  # "length" repeats a stage-02 answer: stripped with stage 02 too
+        switched = make_kit.switchable_text("include/rt/fixture.hpp", text, regions, {})
+        self.assertIn("if (rt::kit_check_strips({1, 2})) {", switched)
+        self.assertIn("return scale * (p.x + p.y);", switched)  # the reference body stays
+        compiler = shutil.which("g++") or shutil.which("clang++")
+        if compiler is None:
+            self.skipTest("no C++ compiler")
+        with tempfile.TemporaryDirectory() as tmp:
+            rt_dir = Path(tmp, "include", "rt")
+            rt_dir.mkdir(parents=True)
+            (rt_dir / "error.hpp").write_text((REPO / "include" / "rt" / "error.hpp").read_text() +
+                                              make_kit.KIT_CHECK_SWITCH)
+            (rt_dir / "fixture.hpp").write_text(switched)
+            main = Path(tmp, "use.cpp")
+            main.write_text('#include <cstdio>\n#include <rt/fixture.hpp>\nint main() {\n  try {\n'
+                            '    const double l = rt::length({});\n    rt::counter c(1, 2);\n'
+                            '    return int(l + rt::first_of(1, 2.0) + c.n) == 4 ? 0 : 1;\n'
+                            '  } catch (const rt::exercise_not_done& e) {\n'
+                            '    std::puts(e.what());\n    return 3;\n  }\n}\n')
+            exe = Path(tmp, "use")
+            p = subprocess.run([compiler, "-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror",
+                                "-I", str(Path(tmp, "include")), str(main), "-o", str(exe)],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            for strip, code, message in [("", 0, ""), ("7", 0, ""), ("1", 3, "stage 01: length"),
+                                         ("2", 3, "stage 01: length"), ("3,2", 3, "stage 01: length")]:
+                with self.subTest(RT_KIT_STRIP=strip):
+                    run = subprocess.run([str(exe)], capture_output=True, text=True,
+                                         env=dict(os.environ, RT_KIT_STRIP=strip))
+                    self.assertEqual(run.returncode, code, run.stdout)
+                    self.assertIn(message, run.stdout)
+            # without the repeat, stage 02 strips only its own: the counter's constructor
+            regions[0].repeats = []
+            switched = make_kit.switchable_text("include/rt/fixture.hpp", text, regions, {})
+            (rt_dir / "fixture.hpp").write_text(switched)
+            p = subprocess.run([compiler, "-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror",
+                                "-I", str(Path(tmp, "include")), str(main), "-o", str(exe)],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            run = subprocess.run([str(exe)], capture_output=True, text=True, env=dict(os.environ, RT_KIT_STRIP="2"))
+            self.assertEqual((run.returncode, run.stdout.strip()), (3, "stage 02: counter: see docs/student-guide.md"))
+
+
 class Kits(unittest.TestCase):
     """Kits written from a small repository made here."""
 
