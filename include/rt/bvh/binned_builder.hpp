@@ -26,6 +26,7 @@
 #include "../vec.hpp"
 #include "build_options.hpp"
 #include "packed.hpp"
+#include "sah_bins.hpp"
 #include "spatial_split.hpp"
 
 namespace rt {
@@ -34,29 +35,19 @@ namespace detail {
 /// The binned SAH build of a binary tree (see the top of this file).
 ///
 /// Speed: one pass over a node's primitives bins them on all three axes at
-/// once; the two halves of the top of the tree are built on separate threads
-/// (bvh_options::threads), each into its own node array, and the arrays are
-/// joined in the order a single thread writes them, so the tree is the same
-/// whatever the number of threads.
+/// once (sah_bins.hpp), on two threads at the top of the tree; the two halves
+/// of the top of the tree are built on separate threads (bvh_options::threads),
+/// each into its own node array, and the arrays are joined in the order a
+/// single thread writes them, so the tree is the same whatever the number of
+/// threads.
 class binary_builder {
 public:
-    /// A split of a node by the SAH: the axis, where, its cost and the children's boxes.
-    struct split {
-        int axis = -1;
-        std::size_t bin = 0;  ///< the first bin of the right side
-        real cost = 0;        ///< A_L N_L + A_R N_R
-        aabb left, right;
-    };
-
     binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,
                    const packed_primitive* prims = nullptr)
         : items_(items), options_(options), spare_threads_(spare_threads), prims_(prims),
-          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256))))
+          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
+          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
     {
-        for (int axis = 0; axis < 3; ++axis)
-            bins_[axis].resize(bin_count_);
-        right_cost_.resize(bin_count_);
-        right_box_.resize(bin_count_);
     }
 
     std::vector<binary_node> nodes;
@@ -138,12 +129,9 @@ public:
                 ++spatial_splits;
             }
         }
-        if (left.empty() && right.empty()) { // the object split, as build() makes it
-            const real low = centroids.lo[object.axis];
-            const real scale = real(bin_count_) / (centroids.hi[object.axis] - low);
+        if (left.empty() && right.empty()) // the object split, as build() makes it
             for (const build_item& r : refs)
-                (bin_of(r.centroid[object.axis], low, scale) < object.bin ? left : right).push_back(r);
-        }
+                (object.left_of(r.centroid) ? left : right).push_back(r);
         std::vector<build_item>().swap(refs);
         aabb left_box, right_box;
         for (const build_item& r : left)
@@ -200,7 +188,7 @@ public:
             for (std::size_t i = begin; i < end; ++i)
                 centroids.grow(items_[i].centroid);
 
-        aabb left_box, right_box;
+        aabb left_box, right_box, left_centroids, right_centroids;
         std::size_t middle = begin;
         const split best = known != nullptr ? *known : find_split(items_.data() + begin, n, centroids);
         if (best.axis < 0) {
@@ -208,6 +196,7 @@ public:
             if (n <= options_.max_leaf_size)
                 return leaf(begin, n, box, area);
             middle = begin + n / 2;
+            left_centroids = right_centroids = centroids;
             for (std::size_t i = begin; i < middle; ++i)
                 left_box.grow(items_[i].box);
             for (std::size_t i = middle; i < end; ++i)
@@ -218,15 +207,12 @@ public:
             const real leaf_cost = options_.intersection_cost * tests(n);
             if (n <= options_.max_leaf_size && leaf_cost <= split_cost)
                 return leaf(begin, n, box, area);
-            const int axis = best.axis;
-            const real low = centroids.lo[axis];
-            const real scale = real(bin_count_) / (centroids.hi[axis] - low);
-            const auto first_right = std::partition(
-                items_.begin() + std::ptrdiff_t(begin), items_.begin() + std::ptrdiff_t(end),
-                [&](const build_item& item) { return bin_of(item.centroid[axis], low, scale) < best.bin; });
-            middle = std::size_t(first_right - items_.begin());
-            left_box = best.left;
-            right_box = best.right;
+            side_bounds l, r;
+            middle = begin + partition_items(items_.data() + begin, n, best, l, r);
+            left_box = l.box;
+            right_box = r.box;
+            left_centroids = l.centroids;
+            right_centroids = r.centroids;
         }
 
         const std::size_t index = nodes.size();
@@ -236,11 +222,12 @@ public:
         if (spare_threads_ > 0 && n >= parallel_threshold) {
             // the right half sorts its own range of items_ in place
             build_in_parallel(
-                items_, left, right, [&] { return build(begin, middle, left_box, depth + 1); },
-                [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1); });
+                items_, left, right,
+                [&] { return build(begin, middle, left_box, depth + 1, nullptr, &left_centroids); },
+                [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1, nullptr, &right_centroids); });
         } else {
-            left = build(begin, middle, left_box, depth + 1);
-            right = build(middle, end, right_box, depth + 1);
+            left = build(begin, middle, left_box, depth + 1, nullptr, &left_centroids);
+            right = build(middle, end, right_box, depth + 1, nullptr, &right_centroids);
         }
         nodes[index].side[0] = left;
         nodes[index].side[1] = right;
@@ -289,72 +276,31 @@ private:
     /// Below this many primitives a subtree is not worth a thread.
     static constexpr std::size_t parallel_threshold = 4096;
 
-    struct bin {
-        aabb box;
-        std::size_t count = 0;
-    };
+    /// From this many primitives a node bins its two halves on two threads.
+    static constexpr std::size_t parallel_binning_threshold = 65536;
 
     /// The leaf tests that n primitives cost: ceil(n / primitives_per_test)
     /// (the SIMD leaf test handles a block of four triangles at the price of
     /// about one; Embree's SAH counts its triangle4 blocks the same way).
     real tests(std::size_t n) const { return leaf_tests(n, options_.primitives_per_test); }
 
-    std::size_t bin_of(real centroid, real low, real scale) const
-    {
-        const real slot = (centroid - low) * scale;
-        return std::min(bin_count_ - 1, std::size_t(slot > 0 ? slot : real(0)));
-    }
-
     split find_split(const build_item* items, std::size_t n, const aabb& centroids)
     {
-        real low[3], scale[3];
-        for (int axis = 0; axis < 3; ++axis) {
-            low[axis] = centroids.lo[axis];
-            const real extent = centroids.hi[axis] - low[axis];
-            scale[axis] = extent > 0 ? real(bin_count_) / extent : real(0); // 0: all in bin 0, never split
-            for (bin& b : bins_[axis])
-                b = bin{};
+        const std::size_t used = bins_for(n, bin_count_);
+        bins_.reset(centroids, used);
+        if (spare_threads_ > 0 && n >= parallel_binning_threshold) {
+            other_bins_.reset(centroids, used);
+            parallel_for(2, 2, [&](std::size_t half, int) {
+                if (half == 0)
+                    bins_.add(items, n / 2);
+                else
+                    other_bins_.add(items + n / 2, n - n / 2);
+            });
+            bins_.merge(other_bins_);
+        } else {
+            bins_.add(items, n);
         }
-        for (std::size_t i = 0; i < n; ++i) { // one pass, three axes
-            const build_item& item = items[i];
-            for (int axis = 0; axis < 3; ++axis) {
-                bin& b = bins_[axis][bin_of(item.centroid[axis], low[axis], scale[axis])];
-                b.box.grow(item.box);
-                ++b.count;
-            }
-        }
-        split best;
-        for (int axis = 0; axis < 3; ++axis) {
-            if (scale[axis] == 0)
-                continue;
-            const std::vector<bin>& bins = bins_[axis];
-            // sweep from the right: right_cost_[s] = A_R N_R for the split before bin s
-            aabb accumulated;
-            std::size_t on_right = 0;
-            for (std::size_t s = bin_count_ - 1; s > 0; --s) {
-                accumulated.grow(bins[s].box);
-                on_right += bins[s].count;
-                right_box_[s] = accumulated;
-                right_cost_[s] = half_area(accumulated) * tests(on_right);
-            }
-            aabb left;
-            std::size_t on_left = 0;
-            for (std::size_t s = 1; s < bin_count_; ++s) {
-                left.grow(bins[s - 1].box);
-                on_left += bins[s - 1].count;
-                if (on_left == 0 || on_left == n)
-                    continue;
-                const real cost = half_area(left) * tests(on_left) + right_cost_[s];
-                if (best.axis < 0 || cost < best.cost) {
-                    best.axis = axis;
-                    best.bin = s;
-                    best.cost = cost;
-                    best.left = left;
-                    best.right = right_box_[s];
-                }
-            }
-        }
-        return best;
+        return bins_.best(n);
     }
 
     binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)
@@ -380,9 +326,7 @@ private:
     int spare_threads_;
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
-    std::vector<bin> bins_[3];
-    std::vector<real> right_cost_;
-    std::vector<aabb> right_box_;
+    sah_bins bins_, other_bins_; ///< other_bins_: the second half's, when two threads bin a node
 };
 
 } // namespace detail

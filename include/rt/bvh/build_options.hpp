@@ -20,7 +20,7 @@ namespace rt {
 /// How a BVH is built (binned_builder.hpp, spatial_split.hpp). The defaults were chosen by
 /// measuring primary rays on the Stanford bunny (docs/stages/04-triangle.md).
 struct bvh_options {
-    int bins = 16;                    ///< SAH slices per axis and node
+    int bins = 16;                    ///< SAH slices per axis, at most (a node of n primitives: 4 + n / 20)
     std::size_t max_leaf_size = 8;    ///< a node with more primitives is always split
     real traversal_cost = 1;          ///< C_trav: one node visit
     real intersection_cost = 1;       ///< C_isect: one leaf test of up to primitives_per_test primitives

@@ -12,6 +12,7 @@
 //   layout.hpp          4-wide nodes, four-triangle leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
+//   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
 //   binned_builder.hpp  the binned SAH build (Wald 2007), on threads
 //   wide_collapse.hpp   the binary tree made 4-wide

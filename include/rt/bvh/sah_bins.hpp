@@ -1,0 +1,328 @@
+// bvh/sah_bins.hpp - the bins of a binned SAH split: primitives counted into
+// equal slices of their centroids' extent on each axis, and the sweep that
+// finds the slice boundary of least cost (binned_builder.hpp uses it).
+//
+//     rt::detail::sah_bins bins(16, 4);          // 16 slices per axis, leaves of 4
+//     bins.reset(centroid_box, rt::detail::bins_for(n, 16));
+//     bins.add(items, n);                        // one pass, three axes
+//     rt::detail::split best = bins.best(n);     // best.axis < 0: no plane separates them
+//
+// Wald, "On fast Construction of SAH-based Bounding Volume Hierarchies", IEEE
+// Symposium on Interactive Ray Tracing 2007, sec. 3 and 4: binning costs one
+// pass over a node's primitives, and the SSE form puts the three axes' slice
+// numbers in one register and a bin's box in two (sec. 4.1). Two sets of bins
+// filled from two halves of the primitives and merged (merge) are the bins of
+// the whole: the top of the tree bins on two threads.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "../aabb.hpp"
+#include "../config.hpp"
+#include "../vec.hpp"
+#include "build_options.hpp"
+
+#include "simd_begin.hpp" // RT_BVH_SSE and the intrinsics, until simd_end.hpp
+
+namespace rt {
+namespace detail {
+
+/// The bin of a centroid coordinate: slot = (c - low) scale, truncated, held in
+/// [0, count - 1] (a NaN goes to bin 0). The SSE form computes the same value
+/// from the same stored centroid (a difference of two products would let the
+/// compiler fuse them, and the binning and the partition could then disagree).
+inline std::size_t bin_of(real centroid, real low, real scale, std::size_t count)
+{
+    const real slot = (centroid - low) * scale;
+    if (!(slot > 0))
+        return 0;
+    if (slot >= real(count - 1))
+        return count - 1;
+    return std::size_t(slot);
+}
+
+/// A split of a node by the SAH: the axis, where, its cost and the children's boxes.
+struct split {
+    int axis = -1;
+    std::size_t bin = 0;  ///< the first bin of the right side
+    real cost = 0;        ///< A_L B(N_L) + A_R B(N_R)
+    aabb left, right;
+    real low = 0, scale = 0; ///< the bins on `axis`, as bin_of takes them
+    std::size_t bins = 0;
+
+    /// Whether an item with this centroid goes to the left child.
+    bool left_of(const vec3& centroid) const { return bin_of(centroid[axis], low, scale, bins) < bin; }
+};
+
+/// The bins a node of n primitives uses: 4 + n / 20, at most `most`
+/// (Embree's binned builder takes min(BINS, 4 + 0.05 n), Embree 3
+/// kernels/builders/heuristic_binning.h): a small node has few places worth
+/// a plane, and the sweep over the bins costs as much as binning it.
+inline std::size_t bins_for(std::size_t n, std::size_t most)
+{
+    return std::max<std::size_t>(2, std::min(most, 4 + n / 20));
+}
+
+/// Bins on three axes for one node (see the top of this file).
+class sah_bins {
+public:
+    sah_bins(std::size_t count, std::size_t per_test) : count_(count), per_test_(per_test)
+    {
+        for (int axis = 0; axis < 3; ++axis) {
+            box_[axis].resize(count_);
+            count_in_[axis].resize(count_);
+            odd_box_[axis].resize(count_);
+            odd_count_[axis].resize(count_);
+        }
+        right_cost_.resize(count_);
+        right_box_.resize(count_);
+    }
+
+    std::size_t count() const { return count_; }
+
+    /// Where a node's centroids fall, in `used` bins (at most count()): low and
+    /// scale per axis (scale 0: the axis has no extent, everything in bin 0,
+    /// never split there), and every bin emptied.
+    void reset(const aabb& centroids, std::size_t used)
+    {
+        used_ = std::max<std::size_t>(2, std::min(used, count_));
+        for (int axis = 0; axis < 3; ++axis) {
+            low_[axis] = centroids.lo[axis];
+            const real extent = centroids.hi[axis] - low_[axis];
+            scale_[axis] = extent > 0 ? real(used_) / extent : real(0);
+            std::fill(box_[axis].begin(), box_[axis].begin() + std::ptrdiff_t(used_), bin_box{});
+            std::fill(count_in_[axis].begin(), count_in_[axis].begin() + std::ptrdiff_t(used_), std::uint32_t(0));
+        }
+    }
+
+    /// Counts n items into the bins (their centroid's bin on each axis).
+    void add(const build_item* items, std::size_t n)
+    {
+#if RT_BVH_SSE
+        static_assert(sizeof(aabb) == 6 * sizeof(float) && offsetof(build_item, centroid) == sizeof(aabb) &&
+                          offsetof(build_item, index) == offsetof(build_item, centroid) + 3 * sizeof(float),
+                      "the loads below read an item as lo.xyz hi.xyz centroid.xyz index");
+        // lanes x, y, z (the fourth is never read): a box's corners are loaded
+        // from the item as they lie (lo.xyz then hi.x; hi.xyz then the
+        // centroid's x), its centroid too, with the index's bits cleared
+        const __m128 low = _mm_setr_ps(low_[0], low_[1], low_[2], 0.0f);
+        const __m128 scale = _mm_setr_ps(scale_[0], scale_[1], scale_[2], 0.0f);
+        const __m128 last = _mm_set1_ps(float(used_ - 1));
+        const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+        const __m128 zero = _mm_setzero_ps();
+        const auto bin_one = [&](const build_item& item, std::vector<bin_box>* boxes, std::vector<std::uint32_t>* counts) {
+            alignas(16) std::int32_t slot[4];
+            const __m128 lo = _mm_loadu_ps(&item.box.lo.x);
+            const __m128 hi = _mm_loadu_ps(&item.box.hi.x);
+            const __m128 c = _mm_and_ps(_mm_loadu_ps(&item.centroid.x), xyz);
+            const __m128 at = _mm_mul_ps(_mm_sub_ps(c, low), scale);
+            // max(at, 0) returns 0 for a NaN (its second operand), as bin_of does
+            _mm_store_si128(reinterpret_cast<__m128i*>(slot), _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(at, zero), last)));
+            for (int axis = 0; axis < 3; ++axis) {
+                bin_box& b = boxes[axis][std::size_t(slot[axis])];
+                b.lo = _mm_min_ps(b.lo, lo);
+                b.hi = _mm_max_ps(b.hi, hi);
+                ++counts[axis][std::size_t(slot[axis])];
+            }
+        };
+        std::size_t i = 0;
+        if (n >= 4 * used_) {
+            // Neighbouring items of a mesh fall in the same bins: each would wait
+            // for the last one's store to its bin. Odd items go to a second set
+            // of bins, merged at the end, so two such chains run side by side.
+            for (int axis = 0; axis < 3; ++axis) {
+                std::fill(odd_box_[axis].begin(), odd_box_[axis].begin() + std::ptrdiff_t(used_), bin_box{});
+                std::fill(odd_count_[axis].begin(), odd_count_[axis].begin() + std::ptrdiff_t(used_), std::uint32_t(0));
+            }
+            for (; i + 1 < n; i += 2) {
+                bin_one(items[i], box_, count_in_);
+                bin_one(items[i + 1], odd_box_, odd_count_);
+            }
+            for (int axis = 0; axis < 3; ++axis)
+                for (std::size_t b = 0; b < used_; ++b) {
+                    grow(box_[axis][b], odd_box_[axis][b]);
+                    count_in_[axis][b] += odd_count_[axis][b];
+                }
+        }
+        for (; i < n; ++i)
+            bin_one(items[i], box_, count_in_);
+#else
+        for (std::size_t i = 0; i < n; ++i) {
+            const build_item& item = items[i];
+            for (int axis = 0; axis < 3; ++axis) {
+                const std::size_t b = bin_of(item.centroid[axis], low_[axis], scale_[axis], used_);
+                box_[axis][b].grow(item.box);
+                ++count_in_[axis][b];
+            }
+        }
+#endif
+    }
+
+    /// Adds another node's bins, filled with the same reset(), to these.
+    void merge(const sah_bins& other)
+    {
+        for (int axis = 0; axis < 3; ++axis)
+            for (std::size_t b = 0; b < used_; ++b) {
+                grow(box_[axis][b], other.box_[axis][b]);
+                count_in_[axis][b] += other.count_in_[axis][b];
+            }
+    }
+
+    /// The boundary of least A_L B(N_L) + A_R B(N_R) over the three axes, for
+    /// the n items added; axis -1 when every item is in one bin on every axis.
+    split best(std::size_t n)
+    {
+        split best;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (scale_[axis] == 0)
+                continue;
+            // sweep from the right: right_cost_[s] = A_R B(N_R) for the split before bin s
+            bin_box accumulated;
+            std::size_t on_right = 0;
+            for (std::size_t s = used_ - 1; s > 0; --s) {
+                grow(accumulated, box_[axis][s]);
+                on_right += count_in_[axis][s];
+                right_box_[s] = accumulated;
+                right_cost_[s] = area_of(accumulated) * leaf_tests(on_right, per_test_);
+            }
+            bin_box left;
+            std::size_t on_left = 0;
+            for (std::size_t s = 1; s < used_; ++s) {
+                grow(left, box_[axis][s - 1]);
+                on_left += count_in_[axis][s - 1];
+                if (on_left == 0 || on_left == n)
+                    continue;
+                const real cost = area_of(left) * leaf_tests(on_left, per_test_) + right_cost_[s];
+                if (best.axis < 0 || cost < best.cost) {
+                    best.axis = axis;
+                    best.bin = s;
+                    best.cost = cost;
+                    best.left = to_aabb(left);
+                    best.right = to_aabb(right_box_[s]);
+                }
+            }
+        }
+        if (best.axis >= 0) {
+            best.low = low_[best.axis];
+            best.scale = scale_[best.axis];
+            best.bins = used_;
+        }
+        return best;
+    }
+
+private:
+#if RT_BVH_SSE
+    struct bin_box {
+        __m128 lo = _mm_set1_ps(std::numeric_limits<float>::infinity());
+        __m128 hi = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+    };
+    static void grow(bin_box& box, const bin_box& by)
+    {
+        box.lo = _mm_min_ps(box.lo, by.lo);
+        box.hi = _mm_max_ps(box.hi, by.hi);
+    }
+    /// half_area of a box that is not empty: (x y + y z) + z x, as half_area sums it
+    static real area_of(const bin_box& box)
+    {
+        const __m128 e = _mm_sub_ps(box.hi, box.lo);
+        const __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1))); // xy yz zx
+        return _mm_cvtss_f32(_mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_movehl_ps(p, p)));
+    }
+    static aabb to_aabb(const bin_box& box)
+    {
+        alignas(16) float lo[4], hi[4];
+        _mm_store_ps(lo, box.lo);
+        _mm_store_ps(hi, box.hi);
+        aabb out;
+        out.lo = vec3(lo[0], lo[1], lo[2]);
+        out.hi = vec3(hi[0], hi[1], hi[2]);
+        return out;
+    }
+#else
+    using bin_box = aabb;
+    static void grow(bin_box& box, const bin_box& by) { box.grow(by); }
+    static real area_of(const bin_box& box) { return half_area(box); }
+    static aabb to_aabb(const bin_box& box) { return box; }
+#endif
+
+    std::size_t count_, per_test_, used_ = 2;
+    real low_[3] = {0, 0, 0}, scale_[3] = {0, 0, 0};
+    std::vector<bin_box> box_[3];
+    std::vector<std::uint32_t> count_in_[3];
+    std::vector<bin_box> odd_box_[3]; ///< the odd items' bins, while add() runs (SSE only)
+    std::vector<std::uint32_t> odd_count_[3];
+    std::vector<real> right_cost_;
+    std::vector<bin_box> right_box_;
+};
+
+/// What one side of a partition holds: its items' box and their centroids' box.
+struct side_bounds {
+    aabb box, centroids;
+};
+
+/// Moves the items that s.left_of sends left before the others and returns
+/// how many went left; `left` and `right` receive each side's bounds, found
+/// in the same pass (the children's boxes are their items', whatever the bins
+/// said, and their centroid boxes need no pass of their own).
+inline std::size_t partition_items(build_item* items, std::size_t n, const split& s, side_bounds& left,
+                                   side_bounds& right)
+{
+#if RT_BVH_SSE
+    // the four boxes in registers (lanes x, y, z), as sah_bins::add loads an item
+    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    __m128 lo[2], hi[2], clo[2], chi[2]; // [0] left, [1] right
+    for (int side = 0; side < 2; ++side) {
+        lo[side] = clo[side] = _mm_set1_ps(std::numeric_limits<float>::infinity());
+        hi[side] = chi[side] = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+    }
+    const auto take = [&](const build_item& item, int side) {
+        const __m128 c = _mm_and_ps(_mm_loadu_ps(&item.centroid.x), xyz);
+        lo[side] = _mm_min_ps(lo[side], _mm_loadu_ps(&item.box.lo.x));
+        hi[side] = _mm_max_ps(hi[side], _mm_loadu_ps(&item.box.hi.x));
+        clo[side] = _mm_min_ps(clo[side], c);
+        chi[side] = _mm_max_ps(chi[side], c);
+    };
+    const auto finish = [&](int side, side_bounds& out) {
+        alignas(16) float a[4], b[4], ca[4], cb[4];
+        _mm_store_ps(a, lo[side]);
+        _mm_store_ps(b, hi[side]);
+        _mm_store_ps(ca, clo[side]);
+        _mm_store_ps(cb, chi[side]);
+        out.box.lo = glm::min(out.box.lo, vec3(a[0], a[1], a[2]));
+        out.box.hi = glm::max(out.box.hi, vec3(b[0], b[1], b[2]));
+        out.centroids.lo = glm::min(out.centroids.lo, vec3(ca[0], ca[1], ca[2]));
+        out.centroids.hi = glm::max(out.centroids.hi, vec3(cb[0], cb[1], cb[2]));
+    };
+#else
+    const auto take = [&](const build_item& item, int side) {
+        side_bounds& out = side == 0 ? left : right;
+        out.box.grow(item.box);
+        out.centroids.grow(item.centroid);
+    };
+#endif
+    std::size_t i = 0, j = n;
+    for (;;) {
+        while (i < j && s.left_of(items[i].centroid))
+            take(items[i++], 0);
+        while (i < j && !s.left_of(items[j - 1].centroid))
+            take(items[--j], 1);
+        if (i == j)
+            break;
+        std::swap(items[i], items[j - 1]); // then both loops take them
+    }
+#if RT_BVH_SSE
+    finish(0, left);
+    finish(1, right);
+#endif
+    return i;
+}
+
+} // namespace detail
+} // namespace rt
+
+#include "simd_end.hpp"
