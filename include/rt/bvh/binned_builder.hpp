@@ -15,6 +15,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -44,10 +45,9 @@ class binary_builder {
 public:
     binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,
                    const packed_primitive* prims = nullptr)
-        : items_(items), options_(options), spare_threads_(spare_threads), prims_(prims),
-          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
-          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
+        : binary_builder(items, options, nullptr, prims)
     {
+        own_available_.store(spare_threads);
     }
 
     std::vector<binary_node> nodes;
@@ -149,7 +149,7 @@ public:
         nodes.emplace_back();
         sah_cost += double(options_.traversal_cost) * double(half_area(box));
         binary_child l, r;
-        if (spare_threads_ > 0 && n >= parallel_threshold) {
+        if (n >= parallel_threshold && take_thread()) {
             // the right child into an item array of its own: it appends to it
             std::vector<build_item> right_items;
             build_in_parallel(
@@ -219,7 +219,7 @@ public:
         nodes.emplace_back();
         sah_cost += double(options_.traversal_cost) * double(area);
         binary_child left, right;
-        if (spare_threads_ > 0 && n >= parallel_threshold) {
+        if (n >= parallel_threshold && take_thread()) {
             // the right half sorts its own range of items_ in place
             build_in_parallel(
                 items_, left, right,
@@ -238,25 +238,51 @@ public:
     }
 
 private:
+    binary_builder(std::vector<build_item>& items, const bvh_options& options, std::atomic<int>* available,
+                   const packed_primitive* prims)
+        : items_(items), options_(options), available_(available != nullptr ? available : &own_available_),
+          prims_(prims), bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
+          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
+    {
+    }
+
+    /// Takes an idle thread for a fork, if there is one. The builders of a tree
+    /// share one count: a thread that finishes its subtree gives its thread back
+    /// and the next large node on any other thread forks again, so a lopsided
+    /// split at the top does not leave a core idle for the rest of the build.
+    bool take_thread()
+    {
+        int idle = available_->load();
+        while (idle > 0)
+            if (available_->compare_exchange_weak(idle, idle - 1))
+                return true;
+        return false;
+    }
+
+    void give_thread() { available_->fetch_add(1); }
+
     /// Builds a node's left child here (build_left()) and its right child on a
-    /// thread of its own with half of the spare threads (build_right(b), b a
-    /// builder over `right_items`: items_ itself, or an array of its own), then
-    /// joins the arrays as a single thread writes them: the right subtree's
-    /// nodes after the left subtree's, and its items after ours when it had
-    /// an array of its own. So the tree does not depend on the thread count.
+    /// thread taken by take_thread() (build_right(b), b a builder over
+    /// `right_items`: items_ itself, or an array of its own), then joins the
+    /// arrays as a single thread writes them: the right subtree's nodes after
+    /// the left subtree's, and its items after ours when it had an array of its
+    /// own. So the tree does not depend on the thread count, nor on which
+    /// nodes forked.
     template <class Left, class Right>
     void build_in_parallel(std::vector<build_item>& right_items, binary_child& left, binary_child& right,
                            const Left& build_left, const Right& build_right)
     {
-        const int for_right = spare_threads_ / 2 + spare_threads_ % 2 - 1;
-        spare_threads_ -= for_right + 1;
-        binary_builder right_builder(right_items, options_, for_right, prims_);
-        // two items on two threads: the caller builds one, a new thread the other
+        binary_builder right_builder(right_items, options_, available_, prims_);
+        std::atomic<int> finished{0};
+        // two items on two threads: the caller builds one, a new thread the
+        // other; the first to finish gives its thread back while the other works
         parallel_for(2, 2, [&](std::size_t side, int) {
             if (side == 0)
                 left = build_left();
             else
                 right = build_right(right_builder);
+            if (finished.fetch_add(1) == 0)
+                give_thread();
         });
         const bool own_items = &right_items != &items_;
         const std::uint32_t node_offset = std::uint32_t(nodes.size());
@@ -288,7 +314,7 @@ private:
     {
         const std::size_t used = bins_for(n, bin_count_);
         bins_.reset(centroids, used);
-        if (spare_threads_ > 0 && n >= parallel_binning_threshold) {
+        if (n >= parallel_binning_threshold && take_thread()) {
             other_bins_.reset(centroids, used);
             parallel_for(2, 2, [&](std::size_t half, int) {
                 if (half == 0)
@@ -296,6 +322,7 @@ private:
                 else
                     other_bins_.add(items + n / 2, n - n / 2);
             });
+            give_thread();
             bins_.merge(other_bins_);
         } else {
             bins_.add(items, n);
@@ -323,7 +350,8 @@ private:
 
     std::vector<build_item>& items_;
     const bvh_options& options_;
-    int spare_threads_;
+    std::atomic<int> own_available_{0}; ///< the idle threads, for the builder that starts the tree
+    std::atomic<int>* available_;       ///< the tree's count: own_available_ or the first builder's
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
     sah_bins bins_, other_bins_; ///< other_bins_: the second half's, when two threads bin a node

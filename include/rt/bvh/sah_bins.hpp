@@ -55,8 +55,9 @@ struct split {
     real low = 0, scale = 0; ///< the bins on `axis`, as bin_of takes them
     std::size_t bins = 0;
 
-    /// Whether an item with this centroid goes to the left child.
-    bool left_of(const vec3& centroid) const { return bin_of(centroid[axis], low, scale, bins) < bin; }
+    /// Whether an item with this centroid goes to the left child: bin_of(...) <
+    /// bin, which for 1 <= bin <= bins - 1 is !(slot >= bin) (a NaN slot is bin 0).
+    bool left_of(const vec3& centroid) const { return !((centroid[axis] - low) * scale >= real(bin)); }
 };
 
 /// The bins a node of n primitives uses: 4 + n / 20, at most `most`
