@@ -361,7 +361,7 @@ int main(int argc, char** argv)
                           {"mesh", "triangles", "dropped_degenerate", "rt_build_seconds_1_thread",
                            "rt_build_seconds_all_threads", "embree_build_seconds_1_thread",
                            "embree_build_seconds_all_threads", "ratio_rt_over_embree_1_thread",
-                           "rt_speedup_all_threads"});
+                           "rt_speedup_all_threads", "rt_build_seconds_1_thread_without_spatial_splits"});
         for (bench::csv* table : {&rays, &builds}) {
             table->note("embree", std::string("Embree ") + RT_BENCH_EMBREE_VERSION +
                                        " (Debian libembree-dev), rtcIntersect1 / rtcOccluded1, default build quality");
@@ -403,9 +403,11 @@ int main(int argc, char** argv)
             rt_scene.shapes.push_back(m.geometry);
             // rt on one thread and on all, alternately (the accelerator as a
             // program makes it: the mesh packed, the tree built, the blocks laid out)
-            double rt_build = 1e300, rt_build_all = 1e300;
-            rt::bvh_options one_thread;
+            double rt_build = 1e300, rt_build_all = 1e300, rt_build_plain = 1e300;
+            rt::bvh_options one_thread, plain;
             one_thread.threads = 1;
+            plain.threads = 1;
+            plain.spatial_budget = 0; // what the spatial splits cost
             for (int k = 0; k < repeats; ++k) {
                 auto start = bench::clock::now();
                 rt::accelerator probe(rt_scene, rt::accelerator_kind::bvh, one_thread);
@@ -415,15 +417,20 @@ int main(int argc, char** argv)
                 rt::accelerator probe_all(rt_scene, rt::accelerator_kind::bvh);
                 rt_build_all = std::min(rt_build_all, bench::seconds_since(start));
                 bench::keep(probe_all);
+                start = bench::clock::now();
+                rt::accelerator probe_plain(rt_scene, rt::accelerator_kind::bvh, plain);
+                rt_build_plain = std::min(rt_build_plain, bench::seconds_since(start));
+                bench::keep(probe_plain);
             }
             const rt::accelerator accel(rt_scene, rt::accelerator_kind::bvh);
 #else
-            const double rt_build = std::nan(""), rt_build_all = std::nan("");
+            const double rt_build = std::nan(""), rt_build_all = std::nan(""), rt_build_plain = std::nan("");
 #endif
             builds.row() << file << triangles << m.geometry.dropped_degenerate << rt_build << rt_build_all
-                         << embree_build_1 << embree_build_all << rt_build / embree_build_1 << rt_build / rt_build_all;
+                         << embree_build_1 << embree_build_all << rt_build / embree_build_1 << rt_build / rt_build_all
+                         << rt_build_plain;
             std::cout << "  build: rt " << rt_build << " s (1 thread), " << rt_build_all << " s (" << all
-                      << " threads); Embree " << embree_build_1 << " s (1 thread), " << embree_build_all << " s ("
+                      << " threads), " << rt_build_plain << " s (1 thread, no spatial splits); Embree " << embree_build_1 << " s (1 thread), " << embree_build_all << " s ("
                       << all << " threads)\n";
 
             // the rays

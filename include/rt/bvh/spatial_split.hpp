@@ -107,12 +107,15 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
     spatial_split best;
     std::vector<aabb> slice(count), right_box(count);
     std::vector<std::size_t> enter(count), leave(count), right_count(count);
+    std::vector<real> planes(count + 1);
     for (int axis = 0; axis < 3; ++axis) {
         const real low = box.lo[axis], extent = box.hi[axis] - box.lo[axis];
         if (!wide[axis] || !(extent > 0))
             continue;
         const real scale = real(count) / extent;
-        const auto plane = [&](std::size_t b) { return low + extent * real(b) / real(count); };
+        for (std::size_t b = 0; b <= count; ++b) // once per axis, not once per crossing
+            planes[b] = low + extent * real(b) / real(count);
+        const auto plane = [&](std::size_t b) { return planes[b]; };
         const auto slot = [&](real x) {
             const real at = (x - low) * scale;
             return std::min(count - 1, std::size_t(at > 0 ? at : real(0)));
@@ -151,9 +154,12 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
                 if (a[axis] > b[axis])
                     std::swap(a, b);
                 const std::size_t from = std::max(first, slot(a[axis])), to = std::min(last, slot(b[axis]));
+                if (from >= to)
+                    continue;
+                const real inverse = real(1) / (b[axis] - a[axis]); // one division per edge
                 for (std::size_t k = from + 1; k <= to; ++k) {
                     const real s = plane(k);
-                    const vec3 q = held(a + (b - a) * ((s - a[axis]) / (b[axis] - a[axis])));
+                    const vec3 q = held(a + (b - a) * ((s - a[axis]) * inverse));
                     slice[k - 1].grow(q);
                     slice[k].grow(q);
                 }
