@@ -20,8 +20,8 @@
    the stage and every earlier stage's program exits 0 (a program runs the student's code of
    its stage and earlier ones, nothing later). These kits are one build, the switchable kit
    (make_kit.switchable_plan: every region solved, and RT_KIT_STRIP=N makes those a kit
-   stripping stage N strips throw its not-done message), run once per stage: about 45 s a
-   stage instead of 100-180 s for a build of each kit. --real-kits builds each kit instead.
+   stripping stage N strips throw its not-done message), run once per stage: a test run and
+   the stage programs (45-90 s in CI) instead of a build of each kit (100-180 s more). --real-kits builds each kit instead.
 A failing case of stage k that names another stage's exercise is a bug in that test (it
 calls another stage's exercise) and is reported by name. A library case (tests/library_*,
 never graded) passes, or fails only with the not-done message of a stage the kit strips: the

@@ -36,11 +36,11 @@ namespace detail {
 /// The binned SAH build of a binary tree (see the top of this file).
 ///
 /// Speed: one pass over a node's primitives bins them on all three axes at
-/// once (sah_bins.hpp), on two threads at the top of the tree; the two halves
-/// of the top of the tree are built on separate threads (bvh_options::threads),
-/// each into its own node array, and the arrays are joined in the order a
-/// single thread writes them, so the tree is the same whatever the number of
-/// threads.
+/// once (sah_bins.hpp), on two threads for a node of 65,536 or more; a node of
+/// 4,096 or more builds its right child on another thread whenever one is idle
+/// (bvh_options::threads; take_thread), into its own node array, and the
+/// arrays are joined in the order a single thread writes them, so the tree is
+/// the same whatever the number of threads.
 class binary_builder {
 public:
     binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,

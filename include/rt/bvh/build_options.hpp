@@ -75,6 +75,20 @@ inline real leaf_tests(std::size_t n, std::size_t per_test)
     return real((n + per - 1) / per);
 }
 
+/// The bin of a coordinate (a centroid; a box's side in spatial_split.hpp): slot = (c - low) scale, truncated, held in
+/// [0, count - 1] (a NaN goes to bin 0). The SSE form computes the same value
+/// from the same stored centroid (a difference of two products would let the
+/// compiler fuse them, and the binning and the partition could then disagree).
+inline std::size_t bin_of(real centroid, real low, real scale, std::size_t count)
+{
+    const real slot = (centroid - low) * scale;
+    if (!(slot > 0))
+        return 0;
+    if (slot >= real(count - 1))
+        return count - 1;
+    return std::size_t(slot);
+}
+
 /// A child of a binary node: inner (count 0, `index` a binary node) or a leaf
 /// (`count` primitives from `index`).
 struct binary_child {

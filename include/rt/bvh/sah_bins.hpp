@@ -32,20 +32,6 @@
 namespace rt {
 namespace detail {
 
-/// The bin of a centroid coordinate: slot = (c - low) scale, truncated, held in
-/// [0, count - 1] (a NaN goes to bin 0). The SSE form computes the same value
-/// from the same stored centroid (a difference of two products would let the
-/// compiler fuse them, and the binning and the partition could then disagree).
-inline std::size_t bin_of(real centroid, real low, real scale, std::size_t count)
-{
-    const real slot = (centroid - low) * scale;
-    if (!(slot > 0))
-        return 0;
-    if (slot >= real(count - 1))
-        return count - 1;
-    return std::size_t(slot);
-}
-
 /// A split of a node by the SAH: the axis, where, its cost and the children's boxes.
 struct split {
     int axis = -1;
@@ -83,8 +69,6 @@ public:
         right_cost_.resize(count_);
         right_box_.resize(count_);
     }
-
-    std::size_t count() const { return count_; }
 
     /// Where a node's centroids fall, in `used` bins (at most count()): low and
     /// scale per axis (scale 0: the axis has no extent, everything in bin 0,

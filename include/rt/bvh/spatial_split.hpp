@@ -116,10 +116,7 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
         for (std::size_t b = 0; b <= count; ++b) // once per axis, not once per crossing
             planes[b] = low + extent * real(b) / real(count);
         const auto plane = [&](std::size_t b) { return planes[b]; };
-        const auto slot = [&](real x) {
-            const real at = (x - low) * scale;
-            return std::min(count - 1, std::size_t(at > 0 ? at : real(0)));
-        };
+        const auto slot = [&](real x) { return bin_of(x, low, scale, count); };
         std::fill(slice.begin(), slice.end(), aabb{});
         std::fill(enter.begin(), enter.end(), 0);
         std::fill(leave.begin(), leave.end(), 0);
