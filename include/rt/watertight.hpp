@@ -65,22 +65,24 @@ struct watertight_ray {
 inline watertight_ray make_watertight_ray(const ray& r)
 {
     watertight_ray w;
-    const vec3& d = r.direction;
+    const real d[3] = {r.direction.x, r.direction.y, r.direction.z};
     w.p[0] = r.origin.x;
     w.p[1] = r.origin.y;
     w.p[2] = r.origin.z;
-    w.d[0] = d.x;
-    w.d[1] = d.y;
-    w.d[2] = d.z;
-    const vec3 m = glm::abs(d);
-    w.kz = m.x >= m.y ? (m.x >= m.z ? 0 : 2) : (m.y >= m.z ? 1 : 2);
-    w.kx = w.kz == 2 ? 0 : w.kz + 1;
-    w.ky = w.kx == 2 ? 0 : w.kx + 1;
-    if (d[w.kz] < 0) { // keep the winding, so front_face stays meaningful
-        const int swap = w.kx;
-        w.kx = w.ky;
-        w.ky = swap;
-    }
+    w.d[0] = d[0];
+    w.d[1] = d[1];
+    w.d[2] = d[2];
+    // kz = argmax |d_k| (the first of equals), then kx, ky, swapped where
+    // d_kz < 0 to keep the winding, so front_face stays meaningful. Looked up
+    // rather than branched on: a tracer's rays point every way, and each of
+    // these branches would be a coin toss for the predictor.
+    const real mx = std::fabs(d[0]), my = std::fabs(d[1]), mz = std::fabs(d[2]);
+    static constexpr signed char largest[8] = {2, 2, 2, 0, 1, 2, 1, 0}; // by (mx>=my) | (mx>=mz)<<1 | (my>=mz)<<2
+    w.kz = largest[int(mx >= my) | int(mx >= mz) << 1 | int(my >= mz) << 2];
+    static constexpr signed char across[3][2][2] = {{{1, 2}, {2, 1}}, {{2, 0}, {0, 2}}, {{0, 1}, {1, 0}}}; // [kz][d_kz < 0]: kx, ky
+    const int negative = d[w.kz] < 0 ? 1 : 0;
+    w.kx = across[w.kz][negative][0];
+    w.ky = across[w.kz][negative][1];
     w.Sx = d[w.kx] / d[w.kz];
     w.Sy = d[w.ky] / d[w.kz];
     w.Sz = 1 / d[w.kz];
