@@ -244,7 +244,8 @@ TEST_CASE("a BVH with spatial splits: every ray through a closed mesh's edges an
 {
     // An icosphere stretched 40 times along a diagonal: long thin slanted
     // triangles whose boxes overlap, the case spatial splits are for. Forced
-    // on everywhere (no overlap threshold, one extra reference per triangle).
+    // on everywhere (no overlap threshold, one extra reference per triangle,
+    // slices narrower than the triangles).
     rt::mesh m = icosphere(3, vec3(0), 1);
     const vec3 d = glm::normalize(vec3(1, 1, real(0.5)));
     for (vec3& v : m.positions)
@@ -253,6 +254,7 @@ TEST_CASE("a BVH with spatial splits: every ray through a closed mesh's edges an
     rt::bvh_options cut;
     cut.spatial_budget = 1;
     cut.spatial_overlap = 0;
+    cut.spatial_bins = 32;
     rt::bvh_options plain;
     plain.spatial_budget = 0;
     const rt::accelerator tree(s, rt::accelerator_kind::bvh, cut);
@@ -432,5 +434,36 @@ TEST_CASE("the accelerators keep the later shape at an equal t, as the list does
         CHECK(rec.shape == 1);
         CHECK(world.any_hit(down_z, 0, 3));
         CHECK_FALSE(world.any_hit(down_z, 0, real(1.5)));
+    }
+}
+
+TEST_CASE("an accelerator maps every primitive id back to its shape and primitive, empty meshes included")
+{
+    // ids are given in scene order: a sphere, an empty mesh, a mesh of three
+    // triangles, another empty mesh, a triangle, a mesh of two
+    rt::scene s;
+    s.shapes.emplace_back(rt::sphere{});
+    s.shapes.emplace_back(rt::mesh{});
+    rt::mesh three;
+    three.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    three.triangles = {{0, 1, 2}, {1, 3, 2}, {0, 1, 3}};
+    s.shapes.emplace_back(three);
+    s.shapes.emplace_back(rt::mesh{});
+    s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 0});
+    rt::mesh two = three;
+    two.triangles.pop_back();
+    s.shapes.emplace_back(two);
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>> expected = {{0, 0}, {2, 0}, {2, 1}, {2, 2},
+                                                                           {4, 0}, {5, 0}, {5, 1}};
+    for (rt::accelerator_kind kind : {rt::accelerator_kind::flat, rt::accelerator_kind::bvh}) {
+        const rt::accelerator world(s, kind);
+        REQUIRE(world.primitive_count() == expected.size());
+        for (std::uint32_t id = 0; id < expected.size(); ++id) {
+            const rt::primitive_ref ref = world.reference(id);
+            INFO("id " << id << ": expected shape " << expected[id].first << ", primitive " << expected[id].second
+                       << "; found shape " << ref.shape << ", primitive " << ref.primitive);
+            CHECK(ref.shape == expected[id].first);
+            CHECK(ref.primitive == expected[id].second);
+        }
     }
 }

@@ -100,23 +100,28 @@ public:
         std::size_t count = 0; // reserved: growing two arrays of a million entries copies them ~20 times
         for (const shape& item : s.shapes)
             count += std::holds_alternative<mesh>(item) ? std::get<mesh>(item).triangles.size() : 1;
+        if (count > std::size_t(sphere_flag - 1))
+            throw error("expected at most 2^31 - 1 primitives in a scene, found " + std::to_string(count) +
+                        "; split the scene");
         prims.reserve(count);
-        refs_.reserve(count);
-        for (std::size_t i = 0; i < s.shapes.size(); ++i) {
-            const shape& item = s.shapes[i];
+        first_id_.reserve(s.shapes.size() + 1);
+        for (const shape& item : s.shapes) {
+            const std::uint32_t id = std::uint32_t(prims.size());
+            first_id_.push_back(id);
             if (const sphere* ball = std::get_if<sphere>(&item)) {
-                prims.push_back(pack_sphere(*ball, next_id(i, 0)));
+                prims.push_back(pack_sphere(*ball, id));
             } else if (const triangle* tri = std::get_if<triangle>(&item)) {
-                prims.push_back(pack_triangle(tri->a, tri->b, tri->c, next_id(i, 0)));
+                prims.push_back(pack_triangle(tri->a, tri->b, tri->c, id));
             } else {
                 const mesh& m = std::get<mesh>(item);
                 for (std::size_t k = 0; k < m.triangles.size(); ++k) {
                     const index3& face = m.triangles[k];
                     prims.push_back(pack_triangle(m.positions[face[0]], m.positions[face[1]],
-                                                  m.positions[face[2]], next_id(i, k)));
+                                                  m.positions[face[2]], std::uint32_t(id + k)));
                 }
             }
         }
+        first_id_.push_back(std::uint32_t(prims.size()));
         if (kind == accelerator_kind::automatic)
             kind = prims.size() < flat_list_crossover ? accelerator_kind::flat : accelerator_kind::bvh;
         kind_ = kind;
@@ -148,24 +153,34 @@ public:
 
     /// flat or bvh (automatic is resolved when the accelerator is built).
     accelerator_kind kind() const { return kind_; }
-    std::size_t primitive_count() const { return refs_.size(); }
+    std::size_t primitive_count() const { return first_id_.empty() ? 0 : first_id_.back(); }
     /// The BVH's statistics (all zero for a flat accelerator).
     const bvh_stats& stats() const { return tree_.stats(); }
     const bvh& tree() const { return tree_; }
-    const primitive_ref& reference(std::uint32_t id) const { return refs_[id]; }
+
+    /// The shape and primitive of a packed primitive's id (id < primitive_count()).
+    /// Ids are given in scene order, so shape s holds the ids from
+    /// first_id_[s] up to first_id_[s + 1]: the shape is the last one whose
+    /// first id is <= id, found by a binary search without branches over the
+    /// shapes' first ids (a few cached lines), not by a table of one entry per
+    /// primitive, whose random lookup missed the cache on about every hit (a
+    /// fifth of a closest hit's time on the bunny: docs/performance.md).
+    primitive_ref reference(std::uint32_t id) const
+    {
+        const std::uint32_t* first = first_id_.data();
+        for (std::size_t n = first_id_.size() - 1; n > 1;) { // first[0] = 0 <= id
+            const std::size_t half = n / 2;
+            first = first[half] <= id ? first + half : first;
+            n -= half;
+        }
+        return primitive_ref{std::uint32_t(first - first_id_.data()), id - *first};
+    }
 
 private:
-    std::uint32_t next_id(std::size_t shape_index, std::size_t primitive)
-    {
-        if (refs_.size() >= std::size_t(sphere_flag - 1))
-            throw error("expected at most 2^31 - 1 primitives in a scene, found more; split the scene");
-        refs_.push_back(primitive_ref{std::uint32_t(shape_index), std::uint32_t(primitive)});
-        return std::uint32_t(refs_.size() - 1);
-    }
 
     void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
     {
-        const primitive_ref& ref = refs_[h.id];
+        const primitive_ref ref = reference(h.id);
         const shape& item = scene_->shapes[ref.shape];
         if (const sphere* ball = std::get_if<sphere>(&item)) {
             hit_sphere(*ball, r, tmin, tmax, rec); // the same call as in the search: the same root
@@ -187,7 +202,7 @@ private:
 
     const scene* scene_ = nullptr;
     accelerator_kind kind_ = accelerator_kind::flat;
-    std::vector<primitive_ref> refs_;
+    std::vector<std::uint32_t> first_id_; ///< shape s's first id, then the number of ids (see reference())
     std::vector<packed_primitive> flat_;
     bvh tree_;
 };
