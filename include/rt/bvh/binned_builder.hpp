@@ -82,7 +82,8 @@ public:
         // part of the tree): build() does it in place and on threads
         aabb centroids;
         bool wide[3] = {false, false, false};
-        const vec3 slice_width = box.extent() / real(bin_count_);
+        const std::size_t slices = std::size_t(std::max(2, std::min(options_.spatial_bins, 256)));
+        const vec3 slice_width = box.extent() / real(slices);
         for (const build_item& r : refs) {
             centroids.grow(r.centroid);
             const vec3 e = r.box.extent();
@@ -99,7 +100,7 @@ public:
         overlap.hi = glm::min(object.left.hi, object.right.hi);
         if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
             return hand_over(&object, &centroids);
-        const spatial_split cut = find_spatial_split(refs, box, wide, bin_count_, prims_, options_.primitives_per_test);
+        const spatial_split cut = find_spatial_split(refs, box, wide, slices, prims_, options_.primitives_per_test);
 
         std::vector<build_item> left, right;
         if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
