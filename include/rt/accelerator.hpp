@@ -163,8 +163,8 @@ public:
     /// first_id_[s] up to first_id_[s + 1]: the shape is the last one whose
     /// first id is <= id, found by a binary search without branches over the
     /// shapes' first ids (a few cached lines), not by a table of one entry per
-    /// primitive, whose random lookup missed the cache on about every hit (a
-    /// fifth of a closest hit's time on the bunny: docs/performance.md).
+    /// primitive, whose random lookup missed the cache on nearly every hit
+    /// (incoherent closest hits on the bunny gained 8%: docs/performance.md).
     primitive_ref reference(std::uint32_t id) const
     {
         const std::uint32_t* first = first_id_.data();
