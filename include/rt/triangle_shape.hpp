@@ -61,14 +61,27 @@ inline vec3 triangle_normal(const vec3& a, const vec3& b, const vec3& c)
     const wide e1[3] = {wide(b.x) - wide(a.x), wide(b.y) - wide(a.y), wide(b.z) - wide(a.z)};
     const wide e2[3] = {wide(c.x) - wide(a.x), wide(c.y) - wide(a.y), wide(c.z) - wide(a.z)};
     const wide n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-    // scaled by the largest component first, so neither the squares overflow
-    // nor they underflow for tiny triangles
-    const wide largest = std::fmax(std::fabs(n[0]), std::fmax(std::fabs(n[1]), std::fabs(n[2])));
+    // (compared by hand: std::fmax is a call into the maths library, and the
+    // components are never NaN for finite corners)
+    const wide ax = std::fabs(n[0]), ay = std::fabs(n[1]), az = std::fabs(n[2]);
+    const wide largest = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
     if (!(largest > 0) || !std::isfinite(largest))
         return vec3(0);
-    const wide x = n[0] / largest, y = n[1] / largest, z = n[2] / largest;
-    const wide length = std::sqrt(x * x + y * y + z * z);
-    return vec3(real(x / length), real(y / length), real(z / length));
+    if constexpr (std::is_same_v<real, float>) {
+        // From float corners no square overflows or underflows in double: a
+        // nonzero component is a multiple of 2^-298 (a difference of products
+        // of differences of floats) below 2^259, so its square lies between
+        // 2^-596 and 2^518. So no scaling, and one division: this runs for
+        // every hit.
+        const wide inv_length = 1 / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        return vec3(real(n[0] * inv_length), real(n[1] * inv_length), real(n[2] * inv_length));
+    } else {
+        // scaled by the largest component first, so neither the squares
+        // overflow nor they underflow for tiny triangles
+        const wide x = n[0] / largest, y = n[1] / largest, z = n[2] / largest;
+        const wide length = std::sqrt(x * x + y * y + z * z);
+        return vec3(real(x / length), real(y / length), real(z / length));
+    }
 }
 
 /// Fills `rec` for a hit on the triangle a, b, c described by `h`:
