@@ -63,3 +63,43 @@ class Judge(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class ProgramsStop(unittest.TestCase):
+    """check_programs_stop: each stage program runs once with every later stage stripped
+    and must exit 0; a program that reaches a later stage's code (exit 3) is named."""
+
+    def kit(self, folder: Path, reaches: dict) -> Path:
+        # stages/NN_x/main.cpp marks a program; build/stages/stageNN_x is a script that
+        # exits 3 when RT_KIT_STRIP names a stage it reaches, else 0
+        for number, later in reaches.items():
+            name = f"{number:02d}_s"
+            (folder / "stages" / name).mkdir(parents=True)
+            (folder / "stages" / name / "main.cpp").write_text("int main() {}\n")
+            exe = folder / "build" / "stages" / f"stage{name}"
+            exe.parent.mkdir(parents=True, exist_ok=True)
+            checks = "".join(f'case ",$RT_KIT_STRIP," in *,{s},*) echo "not done yet: stage {s:02d}" >&2; exit 3;; esac\n'
+                             for s in later)
+            exe.write_text("#!/bin/sh\n" + checks + "exit 0\n")
+            exe.chmod(0o755)
+        (folder / "scenes").mkdir()
+        return folder
+
+    def run_stop(self, reaches: dict):
+        import tempfile
+        with tempfile.TemporaryDirectory() as d:
+            kit = self.kit(Path(d), reaches)
+            report = check_kit.KitReport("programs")
+            check_kit.check_programs_stop(report, kit, kit / "build", sorted(reaches))
+            return report
+
+    def test_programs_that_stop_at_their_stage_pass(self):
+        report = self.run_stop({1: [], 2: [], 3: []})
+        self.assertEqual(report.problems, [])
+        self.assertEqual((report.cases, report.passed), (2, 2))  # the last stage has no later one
+
+    def test_a_program_reaching_a_later_stage_is_named(self):
+        report = self.run_stop({1: [], 2: [3], 3: []})
+        self.assertEqual(len(report.problems), 1)
+        self.assertIn("stage02_s", report.problems[0])
+        self.assertIn("03", report.problems[0])
