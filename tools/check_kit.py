@@ -257,17 +257,27 @@ def program_scene(kit: Path, number: int) -> Path:
     return kit / "scenes" / PROGRAM_SCENES.get(number, "showcase.scene")
 
 
+def run_stage_program(report: KitReport, kit: Path, build: Path, target: str, number: int,
+                      env: Optional[Dict[str, str]] = None) -> Optional[Tuple[int, str]]:
+    """Runs stage `number`'s program on its scene: (exit code, stderr), or None after
+    reporting that it was not built or did not finish."""
+    exe = build / "stages" / target
+    if not exe.is_file():
+        report.problems.append(f"{target}: not built")
+        return None
+    code, err = run_program(exe, program_scene(kit, number), env=env)
+    if code is None:
+        report.problems.append(f"{target}: {err}")
+        return None
+    return code, err
+
+
 def check_programs(report: KitReport, kit: Path, build: Path) -> None:
     for target, folder in program_targets(kit):
-        scene = program_scene(kit, int(folder.name[:2]))
-        exe = build / "stages" / target
-        if not exe.is_file():
-            report.problems.append(f"{target}: not built")
+        ran = run_stage_program(report, kit, build, target, int(folder.name[:2]))
+        if ran is None:
             continue
-        code, err = run_program(exe, scene)
-        if code is None:
-            report.problems.append(f"{target}: {err}")
-            continue
+        code, err = ran
         if code == 3 and "not done yet: stage" in err:
             report.notes.append(f"{target}: exit 3: {err.splitlines()[-1]}")
         else:
@@ -287,15 +297,10 @@ def check_program_rule(report: KitReport, kit: Path, build: Path, stage: int,
         number = int(folder.name[:2])
         if number > stage or (number < stage and not earlier):
             continue  # later programs run this stage's code too
-        scene = program_scene(kit, number)
-        exe = build / "stages" / target
-        if not exe.is_file():
-            report.problems.append(f"{target}: not built")
+        ran = run_stage_program(report, kit, build, target, number, env)
+        if ran is None:
             continue
-        code, err = run_program(exe, scene, env=env)
-        if code is None:
-            report.problems.append(f"{target}: {err}")
-            continue
+        code, err = ran
         last = err.splitlines()[-1] if err else "(no message)"
         if number == stage:
             if code == 3 and f"not done yet: stage {stage:02d}" in err:
@@ -323,22 +328,19 @@ def check_programs_stop(report: KitReport, kit: Path, build: Path, stages: Seque
         later = sorted(s for s in stages if s > number)
         if not later:
             continue
-        exe = build / "stages" / target
-        if not exe.is_file():
-            report.problems.append(f"{target}: not built")
-            continue
+        report.cases += 1
         env = dict(os.environ, RT_KIT_STRIP=",".join(str(s) for s in later))
-        code, err = run_program(exe, program_scene(kit, number), env=env)
-        if code is None:
-            report.problems.append(f"{target}: {err}")
-        elif code != 0:
+        ran = run_stage_program(report, kit, build, target, number, env)
+        if ran is None:
+            continue
+        code, err = ran
+        if code != 0:
             last = err.splitlines()[-1] if err else "(no message)"
             report.problems.append(f"{target}: expected exit 0 with the later stages "
                                    f"{', '.join(f'{s:02d}' for s in later)} stripped (a program runs no "
                                    f"later stage's code), found exit {code}: {last[-300:]}")
         else:
             report.passed += 1
-        report.cases += 1
     if len(report.problems) == before:
         report.notes.append("every program exits 0 with all later stages stripped")
 

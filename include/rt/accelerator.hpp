@@ -177,7 +177,6 @@ public:
     }
 
 private:
-
     void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
     {
         const primitive_ref ref = reference(h.id);

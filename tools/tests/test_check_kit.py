@@ -5,6 +5,7 @@ Run: python3 -m unittest -v test_check_kit   (ctest runs it as tools.check_kit)
 """
 
 import sys
+import tempfile
 import unittest
 from pathlib import Path
 
@@ -61,10 +62,6 @@ class Judge(unittest.TestCase):
         self.assertIn("none of its cases fails", report.problems[0])
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class ProgramsStop(unittest.TestCase):
     """check_programs_stop: each stage program runs once with every later stage stripped
     and must exit 0; a program that reaches a later stage's code (exit 3) is named."""
@@ -86,7 +83,6 @@ class ProgramsStop(unittest.TestCase):
         return folder
 
     def run_stop(self, reaches: dict):
-        import tempfile
         with tempfile.TemporaryDirectory() as d:
             kit = self.kit(Path(d), reaches)
             report = check_kit.KitReport("programs")
@@ -103,3 +99,7 @@ class ProgramsStop(unittest.TestCase):
         self.assertEqual(len(report.problems), 1)
         self.assertIn("stage02_s", report.problems[0])
         self.assertIn("03", report.problems[0])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -82,8 +82,7 @@ public:
         // part of the tree): build() does it in place and on threads
         aabb centroids;
         bool wide[3] = {false, false, false};
-        const std::size_t slices = std::size_t(std::max(2, std::min(options_.spatial_bins, 256)));
-        const vec3 slice_width = box.extent() / real(slices);
+        const vec3 slice_width = box.extent() / real(slice_count_);
         for (const build_item& r : refs) {
             centroids.grow(r.centroid);
             const vec3 e = r.box.extent();
@@ -100,7 +99,7 @@ public:
         overlap.hi = glm::min(object.left.hi, object.right.hi);
         if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
             return hand_over(&object, &centroids);
-        const spatial_split cut = find_spatial_split(refs, box, wide, slices, prims_, options_.primitives_per_test);
+        const spatial_split cut = find_spatial_split(refs, box, wide, slice_count_, prims_, options_.primitives_per_test);
 
         std::vector<build_item> left, right;
         if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
@@ -243,6 +242,7 @@ private:
                    const packed_primitive* prims)
         : items_(items), options_(options), available_(available != nullptr ? available : &own_available_),
           prims_(prims), bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
+          slice_count_(std::size_t(std::max(2, std::min(options.spatial_bins, 256)))),
           bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
     {
     }
@@ -355,6 +355,7 @@ private:
     std::atomic<int>* available_;       ///< the tree's count: own_available_ or the first builder's
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
+    std::size_t slice_count_; ///< the spatial search's slices per axis (bvh_options::spatial_bins)
     sah_bins bins_, other_bins_; ///< other_bins_: the second half's, when two threads bin a node
 };
 
