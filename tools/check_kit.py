@@ -21,7 +21,10 @@
    its stage and earlier ones, nothing later). These kits are one build, the switchable kit
    (make_kit.switchable_plan: every region solved, and RT_KIT_STRIP=N makes those a kit
    stripping stage N strips throw its not-done message), run once per stage: a test run and
-   the stage's own program (about 45 s) instead of a build of each kit (100-180 s more).
+   the stage's own program instead of a build of each kit (100-180 s more). The test run
+   holds only the tests that reach one of the stage's exercises: a first run with nothing
+   stripped records them (RT_KIT_TRACE, Trace); the others run the same code whatever
+   RT_KIT_STRIP says and keep that run's results.
    That earlier programs exit 0 is checked once for all stages: each program with every
    later stage stripped at once (check_programs_stop). --real-kits builds each kit instead.
 A failing case of stage k that names another stage's exercise is a bug in that test (it
@@ -38,6 +41,7 @@ The last line reads "check_kit: N passed, M failed" (one check per kit) and the 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import re
 import shutil
@@ -149,12 +153,15 @@ def program_targets(root: Path) -> List[Tuple[str, Path]]:
 
 
 def run_ctest(build: Path, jobs: int, timeout: int, junit: Path,
-              env: Optional[Dict[str, str]] = None) -> Tuple[List[CaseResult], str]:
-    """Runs every test but the tools' own (label tools: CI's ordinary ctest run has them)."""
+              env: Optional[Dict[str, str]] = None, numbers: Optional[Sequence[int]] = None
+              ) -> Tuple[List[CaseResult], str]:
+    """Runs every test but the tools' own (label tools: CI's ordinary ctest run has them),
+    or of those only the ones numbered `numbers` (ctest -N's numbers)."""
     if junit.exists():
         junit.unlink()
+    chosen = ["-I", "0,0,0," + ",".join(str(n) for n in numbers)] if numbers else []
     _, out = run(["ctest", "--test-dir", str(build), "-j", str(jobs), "--timeout", str(timeout),
-                  "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error"], env=env)
+                  "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error", *chosen], env=env)
     if not junit.is_file():
         return [], out
     cases = []
@@ -345,6 +352,57 @@ def check_programs_stop(report: KitReport, kit: Path, build: Path, stages: Seque
         report.notes.append("every program exits 0 with all later stages stripped")
 
 
+@dataclass
+class Trace:
+    """Which stages' exercises each ctest test asked about (kit_check_strips), from one
+    run of the switchable kit with nothing stripped and RT_KIT_TRACE set (make_kit's
+    KIT_CHECK_SWITCH writes one line per process and stage: the stages as a bit mask,
+    then the command line of the ctest test the process belongs to)."""
+    cases: List[CaseResult]            # the run's results, every region solved
+    asked: Dict[str, int]              # test name -> bit mask of the stages it asked about
+    number: Dict[str, int]             # test name -> its number (ctest -I)
+
+
+def read_trace(build: Path, folder: Path, cases: List[CaseResult]) -> Tuple[Optional[Trace], str]:
+    """The trace of a run (see Trace), or None and why it cannot be used."""
+    ok, listing = run(["ctest", "--test-dir", str(build), "-N", "--show-only=json-v1"])
+    try:
+        tests = json.loads(listing)["tests"] if ok else []
+    except (ValueError, KeyError):
+        tests = []
+    if not tests:
+        return None, "ctest could not list the tests"
+    by_command = {tuple(t.get("command", [])): t["name"] for t in tests}
+    trace = Trace(cases, {t["name"]: 0 for t in tests}, {t["name"]: k + 1 for k, t in enumerate(tests)})
+    for file in sorted(folder.glob("*.trace")):
+        for line in file.read_text(encoding="ascii", errors="replace").splitlines():
+            mask, _, command = line.partition(" ")
+            try:
+                argv = tuple(a.decode("utf-8", "replace") for a in bytes.fromhex(command).split(b"\0")[:-1])
+                stages = int(mask)
+            except ValueError:
+                return None, f"{file.name}: unreadable line '{line[:80]}'"
+            name = by_command.get(argv)
+            if name is None:
+                return None, (f"a process asked about an exercise outside every ctest test "
+                              f"({' '.join(argv)[:120] or 'no ctest ancestor found'})")
+            trace.asked[name] |= stages
+    return trace, ""
+
+
+def traced_run(kit_build: Path, args: argparse.Namespace, work: Path) -> Tuple[Optional[Trace], str]:
+    """Runs the switchable kit's tests once with nothing stripped, recording the trace."""
+    folder = work / "trace"
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    env = {k: v for k, v in os.environ.items() if k != "RT_KIT_STRIP"}
+    env["RT_KIT_TRACE"] = str(folder)
+    cases, out = run_ctest(kit_build, args.jobs, args.timeout, work / "switchable-traced.xml", env)
+    if not cases:
+        return None, f"no test ran: {first_error(out)}"
+    return read_trace(kit_build, folder, cases)
+
+
 # The per-stage kits' build: tests and stage programs only (the kit with every
 # stage stripped has built the benchmarks, the header check and the viewer).
 PER_STAGE_OPTIONS = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_SDL2=ON"]
@@ -368,6 +426,18 @@ def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: Lis
     ok, out = builder.targets(["all"])
     built = time.monotonic() - t0
     log(f"check_kit: the switchable kit built in {built:.0f} s")
+    # One run with nothing stripped records which stages' exercises each test
+    # reaches. A test that never asked about stage N runs, under RT_KIT_STRIP=N,
+    # exactly as it did (kit_check_strips answered it the same), so each stage
+    # reruns only the tests that asked about it, and takes the rest from this run.
+    trace: Optional[Trace] = None
+    if ok:
+        t1 = time.monotonic()
+        trace, why = traced_run(kit / "build", args, work)
+        if trace is None:
+            log(f"check_kit: note: no trace ({why}); every stage reruns every test")
+        else:
+            log(f"check_kit: the traced run with nothing stripped took {time.monotonic() - t1:.0f} s")
     for name, stripped in per_stage:
         report = KitReport(name)
         t1 = time.monotonic()
@@ -375,10 +445,25 @@ def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: Lis
             report.problems.append(f"build of the switchable kit failed (-Werror): {first_error(out)}")
         else:
             env = dict(os.environ, RT_KIT_STRIP=",".join(str(s) for s in sorted(stripped)))
-            cases, ctest_out = run_ctest(kit / "build", args.jobs, args.timeout,
-                                         work / f"switchable-{min(stripped):02d}.xml", env)
-            if not cases:
-                report.problems.append(f"no test ran: {first_error(ctest_out)}")
+            env.pop("RT_KIT_TRACE", None)
+            numbers: Optional[List[int]] = None
+            kept: List[CaseResult] = []
+            if trace is not None:
+                mask = sum(1 << s for s in stripped)
+                # a test that failed with nothing stripped is run again, whatever it asked
+                rerun = {c.name for c in trace.cases if not c.passed}
+                rerun |= {n for n, asked in trace.asked.items() if asked & mask}
+                numbers = sorted(trace.number[n] for n in rerun if n in trace.number)
+                kept = [c for c in trace.cases if c.name not in rerun]
+                report.notes.append(f"{len(numbers)} tests reach a stage {min(stripped):02d} exercise and ran "
+                                    f"again; {len(kept)} reach none and kept their results with nothing stripped")
+            cases: List[CaseResult] = []
+            if numbers is None or numbers:  # (no test reaching the stage: judge says its tests cannot fail)
+                cases, ctest_out = run_ctest(kit / "build", args.jobs, args.timeout,
+                                             work / f"switchable-{min(stripped):02d}.xml", env, numbers)
+                if not cases:
+                    report.problems.append(f"no test ran: {first_error(ctest_out)}")
+            cases = kept + cases
             real = make_kit.plan_kit(source, stripped)  # which regions that kit strips
             judge(report, cases, {r.stage for r in real.stripped}, region_messages)
             check_program_rule(report, kit, kit / "build", next(iter(stripped)), env, earlier=False)

@@ -1,16 +1,21 @@
-"""Tests of tools/check_kit.py's verdict on one kit's cases (judge): which failures a stripped
-kit allows. The kits themselves are built by CI's check_kit run.
+"""Tests of tools/check_kit.py: its verdict on one kit's cases (judge), which failures a
+stripped kit allows; the programs' stop check; the switchable kit's trace. The kits themselves are built by CI's check_kit run.
 
 Run: python3 -m unittest -v test_check_kit   (ctest runs it as tools.check_kit)
 """
 
+import os
+import shutil
+import subprocess
 import sys
 import tempfile
+import textwrap
 import unittest
 from pathlib import Path
 
 TOOLS = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(TOOLS))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 import check_kit  # noqa: E402
 
 NOT_DONE_02 = 'THREW exception: "stage 02: quantise to 8 bits: see docs/stages/02-generate-rays.md"'
@@ -103,3 +108,57 @@ class ProgramsStop(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Trace(unittest.TestCase):
+    """The switchable kit's trace (RT_KIT_TRACE): which stages' exercises each ctest test
+    asked about, so that a stage reruns only the tests that reach it."""
+
+    MAIN = ('#include <cstring>\n#include <rt/fixture.hpp>\n'
+            'int main(int argc, char** argv) {\n'
+            '    const char* what = argc > 1 ? argv[1] : "";\n'
+            '    if (std::strcmp(what, "length") == 0) return int(rt::length({}));\n'
+            '    if (std::strcmp(what, "first") == 0) return rt::first_of(0, 1.0);\n'
+            '    return 0;\n}\n')
+
+    def test_each_ctest_test_is_traced_with_the_stages_it_asked_about(self):
+        import test_make_kit  # the switchable fixture (same folder)
+        import make_kit
+        compiler = shutil.which("g++") or shutil.which("clang++")
+        if compiler is None or shutil.which("ctest") is None or not Path("/proc/self/stat").exists():
+            self.skipTest("needs a C++ compiler, ctest and /proc")
+        text = textwrap.dedent(test_make_kit.StrippedBodiesCompile.SOURCE).lstrip("\n")
+        regions, errors = test_make_kit.scan(test_make_kit.StrippedBodiesCompile.SOURCE, path="include/rt/fixture.hpp")
+        self.assertEqual(errors, [])
+        regions[0].repeats = [2]  # "length" (stage 01) repeats a stage-02 answer: it asks about 1 and 2
+        with tempfile.TemporaryDirectory() as tmp:
+            tmp = Path(tmp)
+            rt_dir = tmp / "include" / "rt"
+            rt_dir.mkdir(parents=True)
+            (rt_dir / "error.hpp").write_text((TOOLS.parent / "include" / "rt" / "error.hpp").read_text() +
+                                              make_kit.KIT_CHECK_SWITCH)
+            (rt_dir / "fixture.hpp").write_text(make_kit.switchable_text("include/rt/fixture.hpp", text, regions, {}))
+            (tmp / "use.cpp").write_text(self.MAIN)
+            exe = tmp / "use"
+            p = subprocess.run([compiler, "-std=c++17", "-Wall", "-Wextra", "-Wpedantic", "-Werror",
+                                "-I", str(tmp / "include"), str(tmp / "use.cpp"), "-o", str(exe)],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            build, folder = tmp / "build", tmp / "trace"
+            build.mkdir()
+            folder.mkdir()
+            (build / "CTestTestfile.cmake").write_text(
+                "".join(f'add_test({name} "{exe}" {name})\n' for name in ("length", "first", "none")))
+            env = dict(os.environ, RT_KIT_TRACE=str(folder))
+            env.pop("RT_KIT_STRIP", None)
+            run = subprocess.run(["ctest", "--test-dir", str(build)], capture_output=True, text=True, env=env)
+            self.assertEqual(run.returncode, 0, run.stdout)
+            trace, why = check_kit.read_trace(build, folder, [])
+            self.assertIsNotNone(trace, why)
+            self.assertEqual(trace.asked, {"length": 0b110, "first": 0b100, "none": 0})
+            self.assertEqual(trace.number, {"length": 1, "first": 2, "none": 3})
+            # a process that no ctest test started cannot be placed: no trace, and why
+            subprocess.run([str(exe), "first"], env=env, check=False)
+            trace, why = check_kit.read_trace(build, folder, [])
+            self.assertIsNone(trace)
+            self.assertIn("outside every ctest test", why)
