@@ -224,7 +224,7 @@ ray_set incoherent(const model& m, std::size_t count)
         const real z = 2 * uniform() - 1, phi = real(6.283185307179586) * uniform();
         const real s = std::sqrt(std::max(real(0), 1 - z * z));
         const vec3 origin = centre + radius * vec3(s * std::cos(phi), s * std::sin(phi), z);
-        const vec3 target = m.box.lo + vec3(uniform(), uniform(), uniform()) * m.box.extent();
+        const vec3 target = m.box.lo + vec3{uniform(), uniform(), uniform()} * m.box.extent();
         const vec3 d = target - origin;
         if (glm::dot(d, d) == 0)
             continue;

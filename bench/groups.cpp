@@ -36,7 +36,7 @@ rt::scene random_shapes(std::size_t count, std::uint64_t seed)
     const real size = std::sqrt(real(2) / (real(3.14159265) * real(count)));
     s.shapes.reserve(count);
     for (std::size_t k = 0; k < count; ++k) {
-        const vec3 centre(uniform(), uniform(), uniform());
+        const vec3 centre{uniform(), uniform(), uniform()};
         if (k % 2 == 0) {
             rt::sphere sp;
             sp.center = centre;
@@ -44,7 +44,7 @@ rt::scene random_shapes(std::size_t count, std::uint64_t seed)
             s.shapes.emplace_back(sp);
         } else {
             rt::triangle t;
-            auto corner = [&] { return centre + real(2) * size * (vec3(uniform(), uniform(), uniform()) - real(0.5)); };
+            auto corner = [&] { return centre + real(2) * size * (vec3{uniform(), uniform(), uniform()} - real(0.5)); };
             t.a = corner();
             t.b = corner();
             t.c = corner();

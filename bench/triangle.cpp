@@ -143,7 +143,7 @@ std::vector<rt::ray> make_rays(const closed_mesh& m, const std::string& kind, st
     while (rays.size() < count) {
         vec3 offset;
         do
-            offset = vec3(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
+            offset = vec3{2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1};
         while (glm::dot(offset, offset) > 1);
         const vec3 origin = m.inside + m.inside_radius * offset;
         const auto& face = m.faces[rng.next_below(std::uint32_t(m.faces.size()))];

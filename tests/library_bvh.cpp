@@ -206,7 +206,7 @@ TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box n
         const double scale = std::pow(10.0, double(k % 7) - 3); // 1e-3 ... 1e3
         vec3 corner[3];
         for (vec3& c : corner)
-            c = vec3(real(scale * coordinate(random)), real(scale * coordinate(random)), real(scale * coordinate(random)));
+            c = vec3{real(scale * coordinate(random)), real(scale * coordinate(random)), real(scale * coordinate(random))};
         const rt::packed_primitive p = rt::pack_triangle(corner[0], corner[1], corner[2], 0);
         const rt::aabb box = rt::packed_bounds(p);
         const int axis = k % 3;
@@ -361,10 +361,10 @@ TEST_CASE("the BVH agrees hit for hit with the flat list on the Stanford bunny")
     const int rays = 120; // the flat list tests all 69451 triangles per ray
     for (int k = 0; k < rays; ++k) {
         // from a point around the bunny to a random point in its box
-        const vec3 target = box.lo + vec3(unit(random), unit(random), unit(random)) * box.extent();
+        const vec3 target = box.lo + vec3{unit(random), unit(random), unit(random)} * box.extent();
         const vec3 from = box.center() + glm::length(box.extent()) *
-                                             glm::normalize(vec3(unit(random) - real(0.5), unit(random) - real(0.5),
-                                                                 unit(random) - real(0.5)));
+                                             glm::normalize(vec3{unit(random) - real(0.5), unit(random) - real(0.5),
+                                                                 unit(random) - real(0.5)});
         const rt::ray r{from, target - from};
         rt::hit_record a, b;
         const bool hit_flat = flat.closest_hit(r, 0, rt::infinity, a);

@@ -150,7 +150,9 @@ TEST_CASE("a sphere smaller than the rounding of its centre is refused by the ch
     rt::pcg32 g(3, 19);
     int hits = 0;
     for (int k = 0; k < 2000; ++k) {
-        const vec3 from = tiny.center + real(std::pow(10.0, -2 + 6 * double(g.next_float()))) * random_direction(g);
+        // two draws, in this order whatever the compiler (the operands of + and * are unsequenced)
+        const real distance = real(std::pow(10.0, -2 + 6 * double(g.next_float())));
+        const vec3 from = tiny.center + distance * random_direction(g);
         rt::hit_record rec;
         if (!world.closest_hit(rt::ray{from, tiny.center - from}, 0, rt::infinity, rec))
             continue;

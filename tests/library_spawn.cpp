@@ -76,7 +76,7 @@ TEST_CASE("a ray spawned from a hit never hits the same surface again at any sca
     std::uniform_real_distribution<real> uniform(-1, 1);
     auto random_unit = [&] {
         for (;;) {
-            const vec3 v(uniform(random), uniform(random), uniform(random));
+            const vec3 v{uniform(random), uniform(random), uniform(random)};
             const real l2 = glm::dot(v, v);
             if (l2 > real(0.01) && l2 <= 1)
                 return v / std::sqrt(l2);
@@ -227,7 +227,7 @@ TEST_CASE("a ray spawned from a sphere hit does not hit the sphere again on its 
     std::uniform_real_distribution<real> uniform(-1, 1);
     auto random_unit = [&] {
         for (;;) {
-            const vec3 v(uniform(random), uniform(random), uniform(random));
+            const vec3 v{uniform(random), uniform(random), uniform(random)};
             const real l2 = glm::dot(v, v);
             if (l2 > real(0.01) && l2 <= 1)
                 return v / std::sqrt(l2);

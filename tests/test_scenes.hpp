@@ -113,14 +113,14 @@ inline rt::scene random_scene(std::mt19937& random, int spheres, int triangles, 
     rt::scene s;
     for (int k = 0; k < spheres; ++k) {
         rt::sphere ball;
-        ball.center = vec3(pos(random), pos(random), pos(random));
+        ball.center = vec3{pos(random), pos(random), pos(random)};
         ball.radius = size(random);
         ball.material = k % 3;
         s.shapes.emplace_back(ball);
         if (k % 5 == 0 && triangles > 0) { // interleave kinds in the shape list
-            const vec3 c(pos(random), pos(random), pos(random));
-            s.shapes.emplace_back(rt::triangle{c, c + vec3(unit(random), unit(random), unit(random)),
-                                               c + vec3(unit(random), unit(random), unit(random)), 1});
+            const vec3 c{pos(random), pos(random), pos(random)};
+            s.shapes.emplace_back(rt::triangle{c, c + vec3{unit(random), unit(random), unit(random)},
+                                               c + vec3{unit(random), unit(random), unit(random)}, 1});
             --triangles;
         }
     }
@@ -131,11 +131,11 @@ inline rt::scene random_scene(std::mt19937& random, int spheres, int triangles, 
             s.shapes.emplace_back(k % 2 == 0 ? rt::triangle{p00, p10, p11, 2} : rt::triangle{p00, p11, p01, 2});
             continue;
         }
-        const vec3 c(pos(random), pos(random), pos(random));
+        const vec3 c{pos(random), pos(random), pos(random)};
         const real r = size(random);
-        s.shapes.emplace_back(rt::triangle{c + r * vec3(unit(random), unit(random), unit(random)),
-                                           c + r * vec3(unit(random), unit(random), unit(random)),
-                                           c + r * vec3(unit(random), unit(random), unit(random)), -1});
+        s.shapes.emplace_back(rt::triangle{c + r * vec3{unit(random), unit(random), unit(random)},
+                                           c + r * vec3{unit(random), unit(random), unit(random)},
+                                           c + r * vec3{unit(random), unit(random), unit(random)}, -1});
     }
     if (meshes) {
         s.shapes.emplace_back(icosphere(2, vec3(1, 1.5f, -2), real(1.2)));
@@ -156,13 +156,13 @@ inline std::vector<rt::ray> random_rays(std::mt19937& random, int count)
     std::vector<rt::ray> rays;
     for (int k = 0; k < count; ++k) {
         rt::ray r;
-        r.origin = vec3(pos(random), pos(random), pos(random));
+        r.origin = vec3{pos(random), pos(random), pos(random)};
         switch (k % 5) {
         case 0:
-            r.direction = glm::normalize(vec3(unit(random), unit(random), unit(random)));
+            r.direction = glm::normalize(vec3{unit(random), unit(random), unit(random)});
             break;
         case 1:
-            r.direction = vec3(unit(random), unit(random), unit(random)) * real(37);
+            r.direction = vec3{unit(random), unit(random), unit(random)} * real(37);
             break;
         case 2: { // axis-parallel, any sign of zero
             const int axis = k % 3;
@@ -176,7 +176,7 @@ inline std::vector<rt::ray> random_rays(std::mt19937& random, int count)
             break;
         }
         default:
-            r.direction = vec3(unit(random), unit(random), unit(random)) * real(0.01);
+            r.direction = vec3{unit(random), unit(random), unit(random)} * real(0.01);
         }
         if (glm::dot(r.direction, r.direction) == 0)
             r.direction = vec3(1, 0, 0);
