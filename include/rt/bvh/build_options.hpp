@@ -86,11 +86,9 @@ inline real leaf_tests(std::size_t n, std::size_t per_test)
 /// compiler fuse them, and the binning and the partition could then disagree).
 inline std::size_t bin_of(real centroid, real low, real scale, std::size_t count)
 {
-    const real slot = (centroid - low) * scale;
-    if (!(slot > 0))
-        return 0;
-    if (slot >= real(count - 1))
-        return count - 1;
+    real slot = (centroid - low) * scale;
+    slot = slot > 0 ? slot : real(0); // (selects, not branches: a NaN goes to 0)
+    slot = slot < real(count - 1) ? slot : real(count - 1);
     return std::size_t(slot);
 }
 
