@@ -86,6 +86,13 @@ else
   echo "==== charts: skipped (matplotlib missing: apt-get install python3-matplotlib)"
 fi
 
+if ((quick)) && [ -f "$out/embree_rays.csv" ]; then
+  # section 6's issue-17 tables come from two full runs (see the script); here
+  # the quick run stands for both, so that the script never rots
+  echo "==== embree tables: bench/embree_runs.py $out $out"
+  python3 "$root/bench/embree_runs.py" "$out" "$out" > "$out/embree_runs.md" || failed+=(embree_runs)
+fi
+
 echo "==== bench: $(( $(date +%s) - start )) s in total; CSV files in $out, charts in $charts"
 if ((${#failed[@]})); then
   echo "bench/run.sh: failed: ${failed[*]}" >&2

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""embree_runs.py - the issue-17 tables of docs/performance.md (section 6), from two
+runs of bench_embree, so that they are never typed by hand.
+
+    build/bench/bench_embree --shared ../shared --out /tmp/run1
+    build/bench/bench_embree --shared ../shared --out /tmp/run2
+    python3 bench/embree_runs.py /tmp/run1 /tmp/run2 --doc docs/performance.md
+
+Each run folder holds embree_rays.csv and embree_build.csv. The tables (rt/Embree
+rays per second on one thread, rt's speed-up on two threads, build times) are
+written between the lines <!-- embree-runs:begin --> and <!-- embree-runs:end -->
+of the document (atomically: a temporary file, then a rename), each figure of the
+first run followed by the second's in brackets. Without --doc they are printed.
+Python 3 standard library only.
+"""
+
+import argparse
+import csv
+import os
+import sys
+
+BEGIN, END = "<!-- embree-runs:begin -->", "<!-- embree-runs:end -->"
+SETS = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
+
+
+def read(path):
+    """The notes (# key: value lines) and the rows of one CSV file."""
+    notes, lines = {}, []
+    with open(path, newline="") as f:
+        for line in f:
+            if line.startswith("# ") and ": " in line:
+                key, value = line[2:].rstrip("\n").split(": ", 1)
+                notes.setdefault(key, value)
+            elif not line.startswith("#"):
+                lines.append(line)
+    return notes, list(csv.DictReader(lines))
+
+
+def load(folder):
+    """One run: its notes, ray figures by (mesh, set, threads) and builds by mesh."""
+    notes, rays = read(os.path.join(folder, "embree_rays.csv"))
+    _, builds = read(os.path.join(folder, "embree_build.csv"))
+    name = lambda m: m[:-4] if m.endswith(".obj") else m
+    return (notes,
+            {(name(r["mesh"]), r["set"], int(r["threads"])): r for r in rays},
+            {name(b["mesh"]): b for b in builds})
+
+
+def seconds(x):
+    return "%.3f" % x if x >= 0.001 else "%.6f" % x
+
+
+def tables(first, second):
+    notes, rays1, builds1 = first
+    _, rays2, builds2 = second
+    meshes = list(builds1)
+    missing = [m for m in meshes if m not in builds2] + \
+        [f"{m} {s}" for m in meshes for s in SETS for t in (1, 2)
+         if (m, s, t) not in rays1 or (m, s, t) not in rays2]
+    if missing:
+        raise SystemExit("embree_runs.py: expected both runs to hold every mesh and set (one and two "
+                         "threads), found none for " + ", ".join(missing[:5]) + "; rerun bench_embree in full")
+    both = lambda f: lambda m, s: "%s (%s)" % (f(rays1, m, s), f(rays2, m, s))
+    ratio = both(lambda r, m, s: "%.2f" % float(r[(m, s, 1)]["ratio_rt_over_embree"]))
+    speedup = both(lambda r, m, s: "%.2fx" % (float(r[(m, s, 2)]["rt_mrays_per_s"]) /
+                                              float(r[(m, s, 1)]["rt_mrays_per_s"])))
+    out = [f"Machine: {notes.get('machine', 'not recorded')}.", "",
+           "rt/Embree rays per second, one thread, first run (second run):", "",
+           "| mesh | " + " | ".join(SETS) + " |", "|---|" + "---:|" * len(SETS)]
+    out += ["| %s | %s |" % (m, " | ".join(ratio(m, s) for s in SETS)) for m in meshes]
+    out += ["", "rt's speed-up from one to two threads, the same sets:", "",
+            "| mesh | " + " | ".join(SETS) + " |", "|---|" + "---:|" * len(SETS)]
+    out += ["| %s | %s |" % (m, " | ".join(speedup(m, s) for s in SETS)) for m in meshes]
+    out += ["", "Builds, seconds:", "",
+            "| mesh | rt, 1 thread | rt, 2 threads | rt, 1 thread, no spatial splits | Embree, 1 thread "
+            "| rt/Embree, 1 thread | rt/Embree, no spatial splits | rt speed-up on 2 threads |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for m in meshes:
+        cells = []
+        for column in ("rt_build_seconds_1_thread", "rt_build_seconds_all_threads",
+                       "rt_build_seconds_1_thread_without_spatial_splits", "embree_build_seconds_1_thread"):
+            cells.append("%s (%s)" % (seconds(float(builds1[m][column])), seconds(float(builds2[m][column]))))
+        one = lambda b: float(b["rt_build_seconds_1_thread"]) / float(b["embree_build_seconds_1_thread"])
+        plain = lambda b: (float(b["rt_build_seconds_1_thread_without_spatial_splits"]) /
+                           float(b["embree_build_seconds_1_thread"]))
+        speed = lambda b: float(b["rt_build_seconds_1_thread"]) / float(b["rt_build_seconds_all_threads"])
+        cells.append("**%.2f** (%.2f)" % (one(builds1[m]), one(builds2[m])))
+        cells.append("%.2f (%.2f)" % (plain(builds1[m]), plain(builds2[m])))
+        cells.append("%.2fx (%.2fx)" % (speed(builds1[m]), speed(builds2[m])))
+        out.append("| %s | %s |" % (m, " | ".join(cells)))
+    return "\n".join(out) + "\n"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("first", help="the first run's --out folder")
+    parser.add_argument("second", help="the second run's --out folder")
+    parser.add_argument("--doc", help="the document whose marked block to replace")
+    args = parser.parse_args(argv)
+    text = tables(load(args.first), load(args.second))
+    if not args.doc:
+        sys.stdout.write(text)
+        return 0
+    with open(args.doc, encoding="utf-8") as f:
+        doc = f.read()
+    if doc.count(BEGIN) != 1 or doc.count(END) != 1 or doc.index(BEGIN) > doc.index(END):
+        raise SystemExit(f"{args.doc}: expected one '{BEGIN}' line and, after it, one '{END}' line; "
+                         f"add them around the tables to replace")
+    start, end = doc.index(BEGIN) + len(BEGIN), doc.index(END)
+    new = doc[:start] + "\n" + text + doc[end:]
+    with open(args.doc + ".tmp", "w", encoding="utf-8") as f:
+        f.write(new)
+    os.replace(args.doc + ".tmp", args.doc)
+    print("embree_runs.py: wrote the tables of", args.first, "and", args.second, "into", args.doc)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
