@@ -1,0 +1,83 @@
+"""Tests of bench/embree_runs.py: the issue-17 tables of docs/performance.md from two
+bench_embree runs (CI's quick run may have no mesh: without ../shared its tables are empty,
+so the arithmetic and the markers are checked here on two small runs written by hand).
+
+Run: python3 -m unittest -v test_embree_runs   (ctest runs it as tools.embree_runs)
+"""
+
+import contextlib
+import io
+import shutil
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+BENCH = Path(__file__).resolve().parent.parent.parent / "bench"
+sys.path.insert(0, str(BENCH))
+import embree_runs  # noqa: E402
+
+RAYS = ("mesh,triangles,set,rays,threads,rt_seconds,embree_seconds,rt_mrays_per_s,embree_mrays_per_s,"
+        "ratio_rt_over_embree,rt_hits,embree_hits,hit_mismatch,depth_mismatch\n")
+BUILD = ("mesh,triangles,dropped_degenerate,rt_build_seconds_1_thread,rt_build_seconds_all_threads,"
+         "embree_build_seconds_1_thread,embree_build_seconds_all_threads,ratio_rt_over_embree_1_thread,"
+         "rt_speedup_all_threads,rt_build_seconds_1_thread_without_spatial_splits\n")
+
+
+def write_run(folder: Path, ratio: float, two_thread_rate: float, sets=embree_runs.SETS):
+    folder.mkdir(parents=True)
+    lines = ["# machine: a test machine\n", RAYS]
+    for s in sets:
+        lines.append(f"cube.obj,12,{s},100,1,1,1,2.0,4.0,{ratio},1,1,0,0\n")
+        lines.append(f"cube.obj,12,{s},100,2,1,1,{two_thread_rate},8.0,0.5,1,1,0,0\n")
+    (folder / "embree_rays.csv").write_text("".join(lines))
+    (folder / "embree_build.csv").write_text("# machine: a test machine\n" + BUILD +
+                                             "cube.obj,12,0,0.02,0.0125,0.01,0.005,2.0,1.6,0.011\n")
+
+
+class Tables(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="embree-runs-test-"))
+        write_run(self.tmp / "one", 0.5, 3.8)
+        write_run(self.tmp / "two", 0.25, 4.0)
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def test_each_figure_of_the_first_run_then_the_second_in_brackets(self):
+        text = embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(self.tmp / "two"))
+        self.assertIn("Machine: a test machine.", text)
+        self.assertIn("| cube | 0.50 (0.25) | 0.50 (0.25) |", text)  # rt/Embree, one thread
+        self.assertIn("| cube | 1.90x (2.00x) |", text)                # rt's rays/s on two threads / one
+        # builds: 0.02 s against Embree's 0.01 s; 0.011 s without spatial splits; 0.02 / 0.0125
+        self.assertIn("| cube | 0.020 (0.020) | 0.013 (0.013) | 0.011 (0.011) | 0.010 (0.010) | "
+                      "**2.00** (2.00) | 1.10 (1.10) | 1.60x (1.60x) |", text)
+
+    def test_the_marked_block_is_replaced_and_the_rest_kept(self):
+        doc = self.tmp / "doc.md"
+        doc.write_text(f"before\n{embree_runs.BEGIN}\nold tables\n{embree_runs.END}\nafter\n")
+        with contextlib.redirect_stdout(io.StringIO()):
+            embree_runs.main([str(self.tmp / "one"), str(self.tmp / "two"), "--doc", str(doc)])
+        text = doc.read_text()
+        self.assertTrue(text.startswith(f"before\n{embree_runs.BEGIN}\nMachine: a test machine."))
+        self.assertTrue(text.endswith(f"{embree_runs.END}\nafter\n"))
+        self.assertNotIn("old tables", text)
+        self.assertFalse(Path(str(doc) + ".tmp").exists())
+
+    def test_a_document_without_the_markers_is_left_as_it_was(self):
+        doc = self.tmp / "doc.md"
+        doc.write_text("no markers here\n")
+        with self.assertRaises(SystemExit) as caught:
+            embree_runs.main([str(self.tmp / "one"), str(self.tmp / "two"), "--doc", str(doc)])
+        self.assertIn("expected one '<!-- embree-runs:begin -->' line", str(caught.exception))
+        self.assertEqual(doc.read_text(), "no markers here\n")
+
+    def test_a_run_without_a_set_is_refused_by_name(self):
+        write_run(self.tmp / "short", 0.5, 3.8, sets=embree_runs.SETS[:-1])
+        with self.assertRaises(SystemExit) as caught:
+            embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(self.tmp / "short"))
+        self.assertIn("cube incoherent", str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()
