@@ -752,7 +752,9 @@ inline void kit_check_trace(std::initializer_list<int> stages)
     for (const int stage : stages)
         if (stage >= 0 && stage < 64)
             mask |= 1ul << stage;
-    if ((recorded.fetch_or(mask) & mask) == mask)
+    // a load first: the exercises of a render are asked about once per pixel,
+    // and a read-modify-write each time would bounce the line between threads
+    if ((recorded.load(std::memory_order_relaxed) & mask) == mask || (recorded.fetch_or(mask) & mask) == mask)
         return;
     static const std::string command = kit_check_test_command();
     std::string line = std::to_string(mask) + " ";
