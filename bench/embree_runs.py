@@ -15,25 +15,13 @@ Python 3 standard library only.
 """
 
 import argparse
-import csv
 import os
 import sys
 
+from csv_notes import read  # beside this file
+
 BEGIN, END = "<!-- embree-runs:begin -->", "<!-- embree-runs:end -->"
 SETS = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
-
-
-def read(path):
-    """The notes (# key: value lines) and the rows of one CSV file."""
-    notes, lines = {}, []
-    with open(path, newline="") as f:
-        for line in f:
-            if line.startswith("# ") and ": " in line:
-                key, value = line[2:].rstrip("\n").split(": ", 1)
-                notes.setdefault(key, value)
-            elif not line.startswith("#"):
-                lines.append(line)
-    return notes, list(csv.DictReader(lines))
 
 
 def load(folder):

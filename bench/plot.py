@@ -9,29 +9,17 @@ Every chart carries the machine line of the CSV it comes from. A CSV that is
 absent (an experiment not built or skipped) gives no chart and a message.
 """
 import argparse
-import csv
 import math
 import os
 import sys
 import textwrap
 
+from csv_notes import read  # (beside this file)
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read(path):
-    """(notes, rows): the '# key: value' lines as a dict, the rows as dicts."""
-    notes, lines = {}, []
-    with open(path, newline="") as f:
-        for line in f:
-            if line.startswith("#"):
-                key, _, value = line[1:].strip().partition(": ")
-                notes[key] = value
-            else:
-                lines.append(line)
-    return notes, list(csv.DictReader(lines))
 
 
 def num(text):
