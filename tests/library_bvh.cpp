@@ -16,7 +16,11 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <random>
+#include <set>
+#include <stdexcept>
+#include <thread>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -130,13 +134,13 @@ TEST_CASE("without Ize's factor the slab test culls boxes that a ray touches at 
 
 namespace {
 
-/// Whether two accelerators hold the same tree: nodes, boxes, leaves and primitive order.
+/// Whether two accelerators hold the same tree: nodes, boxes, leaves and the primitives of their blocks.
 bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
 {
     const std::vector<rt::bvh_node>& na = a.tree().nodes();
     const std::vector<rt::bvh_node>& nb = b.tree().nodes();
-    const std::vector<rt::packed_primitive>& pa = a.tree().primitives();
-    const std::vector<rt::packed_primitive>& pb = b.tree().primitives();
+    const auto& pa = a.tree().blocks();
+    const auto& pb = b.tree().blocks();
     if (na.size() != nb.size() || pa.size() != pb.size())
         return false;
     bool same = a.stats().depth == b.stats().depth && a.stats().references == b.stats().references;
@@ -147,7 +151,8 @@ bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
                 same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
         }
     for (std::size_t i = 0; i < pa.size(); ++i)
-        same = same && pa[i].id == pb[i].id;
+        for (int lane = 0; lane < 4; ++lane)
+            same = same && pa[i].id[lane] == pb[i].id[lane];
     return same;
 }
 
@@ -188,9 +193,72 @@ TEST_CASE("the BVH is the same whatever the number of threads that build it")
     two.threads = 2;
     one.spatial_budget = two.spatial_budget = 0;
     const rt::accelerator a(large, rt::accelerator_kind::bvh, one);
-    INFO("expected the tree of a one-thread build (nodes, boxes, leaves, primitive order) from two threads, twice");
+    INFO("expected the tree of a one-thread build (nodes, boxes, leaves, the blocks' primitives) from two threads, twice");
     CHECK(same_tree(a, rt::accelerator(large, rt::accelerator_kind::bvh, two)));
     CHECK(same_tree(a, rt::accelerator(large, rt::accelerator_kind::bvh, two)));
+}
+
+namespace {
+
+/// Sums [begin, end) by halves as the builder forks a node: the right half
+/// offered to the other threads, the left half here; records each thread seen.
+long long fork_sum(rt::detail::build_tasks& tasks, long long begin, long long end, std::set<std::thread::id>& seen,
+                   std::mutex& seen_mutex)
+{
+    {
+        const std::lock_guard<std::mutex> lock(seen_mutex);
+        seen.insert(std::this_thread::get_id());
+    }
+    if (end - begin <= 64) {
+        long long sum = 0;
+        for (long long i = begin; i < end; ++i)
+            sum += i;
+        return sum;
+    }
+    const long long middle = begin + (end - begin) / 2;
+    long long left = 0, right = 0;
+    auto right_half = [&] { right = fork_sum(tasks, middle, end, seen, seen_mutex); };
+    tasks.fork(right_half, [&] { left = fork_sum(tasks, begin, middle, seen, seen_mutex); });
+    return left + right;
+}
+
+} // namespace
+
+TEST_CASE("the build's tasks: each runs once whichever thread takes it, and an error reaches the thread that forked")
+{
+    for (const int threads : {1, 2, 4}) {
+        CAPTURE(threads);
+        rt::detail::build_tasks tasks;
+        std::set<std::thread::id> seen;
+        std::mutex seen_mutex;
+        long long sum = 0;
+        tasks.run(threads, [&] { sum = fork_sum(tasks, 0, 1 << 16, seen, seen_mutex); });
+        INFO("expected the sum of 0 .. 65535 from halves forked down to 64 numbers");
+        CHECK(sum == 65536LL * 65535 / 2);
+        CHECK(seen.size() <= std::size_t(threads));
+    }
+    for (const bool right_throws : {false, true}) {
+        CAPTURE(right_throws);
+        rt::detail::build_tasks tasks;
+        bool other_ran = false;
+        const auto fail = [] { throw std::runtime_error("a task failed"); };
+        auto right = [&] {
+            if (right_throws)
+                fail();
+            other_ran = true;
+        };
+        INFO("expected the exception of either side from run(), after both sides ended");
+        CHECK_THROWS_WITH(tasks.run(2, [&] {
+            tasks.fork(right, [&] {
+                if (!right_throws)
+                    fail();
+                other_ran = true;
+            });
+        }),
+                          "a task failed");
+        if (right_throws)
+            CHECK(other_ran); // the left side ran to its end before the right side's error was rethrown
+    }
 }
 
 TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box never cuts it")

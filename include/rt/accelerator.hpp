@@ -38,6 +38,7 @@
 #include "error.hpp"
 #include "hit_record.hpp"
 #include "mesh.hpp"
+#include "parallel.hpp"
 #include "ray.hpp"
 #include "scene.hpp"
 #include "shape_hit.hpp"
@@ -96,39 +97,50 @@ public:
                          const bvh_options& options = {})
         : scene_(&s)
     {
-        std::vector<packed_primitive> prims;
-        std::size_t count = 0; // reserved: growing two arrays of a million entries copies them ~20 times
+        std::size_t count = 0;
         for (const shape& item : s.shapes)
             count += std::holds_alternative<mesh>(item) ? std::get<mesh>(item).triangles.size() : 1;
         if (count > std::size_t(sphere_flag - 1))
             throw error("expected at most 2^31 - 1 primitives in a scene, found " + std::to_string(count) +
                         "; split the scene");
-        prims.reserve(count);
+        if (kind == accelerator_kind::automatic)
+            kind = count < flat_list_crossover ? accelerator_kind::flat : accelerator_kind::bvh;
+        kind_ = kind;
+        // the packed primitives, in scene order (a shape's ids follow the
+        // last shape's): the flat list keeps them; the BVH copies them into
+        // its leaf blocks, so they are packed on the build's threads into an
+        // array that is not first cleared (bvh/parallel_fill.hpp)
         first_id_.reserve(s.shapes.size() + 1);
+        std::vector<packed_primitive, detail::default_init_allocator<packed_primitive>> prims(count);
+        const int threads = count < detail::binary_builder::parallel_threshold ? 1 : thread_count(options.threads);
+        std::size_t id = 0;
         for (const shape& item : s.shapes) {
-            const std::uint32_t id = std::uint32_t(prims.size());
-            first_id_.push_back(id);
+            first_id_.push_back(std::uint32_t(id));
             if (const sphere* ball = std::get_if<sphere>(&item)) {
-                prims.push_back(pack_sphere(*ball, id));
+                prims[id] = pack_sphere(*ball, std::uint32_t(id));
+                ++id;
             } else if (const triangle* tri = std::get_if<triangle>(&item)) {
-                prims.push_back(pack_triangle(tri->a, tri->b, tri->c, id));
+                prims[id] = pack_triangle(tri->a, tri->b, tri->c, std::uint32_t(id));
+                ++id;
             } else {
                 const mesh& m = std::get<mesh>(item);
-                for (std::size_t k = 0; k < m.triangles.size(); ++k) {
-                    const index3& face = m.triangles[k];
-                    prims.push_back(pack_triangle(m.positions[face[0]], m.positions[face[1]],
-                                                  m.positions[face[2]], std::uint32_t(id + k)));
-                }
+                packed_primitive* out = prims.data() + id;
+                const std::uint32_t first = std::uint32_t(id);
+                detail::fill_in_parallel(m.triangles.size(), threads, [&](std::size_t begin, std::size_t end) {
+                    for (std::size_t k = begin; k < end; ++k) {
+                        const index3& face = m.triangles[k];
+                        out[k] = pack_triangle(m.positions[face[0]], m.positions[face[1]], m.positions[face[2]],
+                                               std::uint32_t(first + k));
+                    }
+                });
+                id += m.triangles.size();
             }
         }
-        first_id_.push_back(std::uint32_t(prims.size()));
-        if (kind == accelerator_kind::automatic)
-            kind = prims.size() < flat_list_crossover ? accelerator_kind::flat : accelerator_kind::bvh;
-        kind_ = kind;
+        first_id_.push_back(std::uint32_t(count));
         if (kind_ == accelerator_kind::flat)
-            flat_ = std::move(prims);
+            flat_.assign(prims.begin(), prims.end());
         else
-            tree_ = bvh(std::move(prims), options);
+            tree_ = bvh(prims.data(), prims.size(), options);
     }
 
     /// The closest hit in [tmin, tmax] (see the top of this file), with every

@@ -15,7 +15,6 @@
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -23,9 +22,9 @@
 
 #include "../aabb.hpp"
 #include "../config.hpp"
-#include "../parallel.hpp"
 #include "../vec.hpp"
 #include "build_options.hpp"
+#include "build_tasks.hpp"
 #include "packed.hpp"
 #include "sah_bins.hpp"
 #include "spatial_split.hpp"
@@ -36,19 +35,28 @@ namespace detail {
 /// The binned SAH build of a binary tree (see the top of this file).
 ///
 /// Speed: one pass over a node's primitives bins them on all three axes at
-/// once (sah_bins.hpp), on two threads for a node of 65,536 or more; a node of
-/// 4,096 or more builds its right child on another thread whenever one is idle
-/// (bvh_options::threads; take_thread), into its own node array, and the
-/// arrays are joined in the order a single thread writes them, so the tree is
-/// the same whatever the number of threads.
+/// once (sah_bins.hpp), its two halves on two threads for a node of 65,536 or
+/// more; a node of 4,096 or more offers its right child to an idle thread
+/// (build_tasks.hpp; bvh_options::threads), which builds it into its own node
+/// array, and the arrays are joined in the order a single thread writes them,
+/// so the tree is the same whatever the number of threads.
 class binary_builder {
 public:
-    binary_builder(std::vector<build_item>& items, const bvh_options& options, int spare_threads,
+    /// A builder over `items`; `tasks` (nullptr: one thread) shares its large
+    /// nodes' subtrees among threads. Call build() or build_spatial() inside
+    /// tasks->run().
+    binary_builder(std::vector<build_item>& items, const bvh_options& options, build_tasks* tasks,
                    const packed_primitive* prims = nullptr)
-        : binary_builder(items, options, nullptr, prims)
+        : items_(items), options_(options), tasks_(tasks), prims_(prims),
+          bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
+          slice_count_(std::size_t(std::max(2, std::min(options.spatial_bins, 256)))),
+          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
     {
-        own_available_.store(spare_threads);
     }
+
+    /// Below this many primitives a subtree is not worth a thread (a whole
+    /// tree below it is built on one: bvh.hpp).
+    static constexpr std::size_t parallel_threshold = 4096;
 
     std::vector<binary_node> nodes;
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
@@ -149,7 +157,7 @@ public:
         nodes.emplace_back();
         sah_cost += double(options_.traversal_cost) * double(half_area(box));
         binary_child l, r;
-        if (n >= parallel_threshold && take_thread()) {
+        if (n >= parallel_threshold && tasks_ != nullptr) {
             // the right child into an item array of its own: it appends to it
             std::vector<build_item> right_items;
             build_in_parallel(
@@ -219,7 +227,7 @@ public:
         nodes.emplace_back();
         sah_cost += double(options_.traversal_cost) * double(area);
         binary_child left, right;
-        if (n >= parallel_threshold && take_thread()) {
+        if (n >= parallel_threshold && tasks_ != nullptr) {
             // the right half sorts its own range of items_ in place
             build_in_parallel(
                 items_, left, right,
@@ -238,53 +246,20 @@ public:
     }
 
 private:
-    binary_builder(std::vector<build_item>& items, const bvh_options& options, std::atomic<int>* available,
-                   const packed_primitive* prims)
-        : items_(items), options_(options), available_(available != nullptr ? available : &own_available_),
-          prims_(prims), bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
-          slice_count_(std::size_t(std::max(2, std::min(options.spatial_bins, 256)))),
-          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
-    {
-    }
-
-    /// Takes an idle thread for a fork, if there is one. The builders of a tree
-    /// share one count: a thread that finishes its subtree gives its thread back
-    /// and the next large node on any other thread forks again, so a lopsided
-    /// split at the top does not leave a core idle for the rest of the build.
-    bool take_thread()
-    {
-        int idle = available_->load();
-        while (idle > 0)
-            if (available_->compare_exchange_weak(idle, idle - 1))
-                return true;
-        return false;
-    }
-
-    void give_thread() { available_->fetch_add(1); }
-
-    /// Builds a node's left child here (build_left()) and its right child on a
-    /// thread taken by take_thread() (build_right(b), b a builder over
-    /// `right_items`: items_ itself, or an array of its own), then joins the
-    /// arrays as a single thread writes them: the right subtree's nodes after
-    /// the left subtree's, and its items after ours when it had an array of its
-    /// own. So the tree does not depend on the thread count, nor on which
-    /// nodes forked.
+    /// Builds a node's left child here (build_left()) while its right child
+    /// (build_right(b), b a builder over `right_items`: items_ itself, or an
+    /// array of its own) is offered to the other threads (build_tasks.hpp),
+    /// then joins the arrays as a single thread writes them: the right
+    /// subtree's nodes after the left subtree's, and its items after ours when
+    /// it had an array of its own. So the tree does not depend on the thread
+    /// count, nor on which thread built what.
     template <class Left, class Right>
     void build_in_parallel(std::vector<build_item>& right_items, binary_child& left, binary_child& right,
                            const Left& build_left, const Right& build_right)
     {
-        binary_builder right_builder(right_items, options_, available_, prims_);
-        std::atomic<int> finished{0};
-        // two items on two threads: the caller builds one, a new thread the
-        // other; the first to finish gives its thread back while the other works
-        parallel_for(2, 2, [&](std::size_t side, int) {
-            if (side == 0)
-                left = build_left();
-            else
-                right = build_right(right_builder);
-            if (finished.fetch_add(1) == 0)
-                give_thread();
-        });
+        binary_builder right_builder(right_items, options_, tasks_, prims_);
+        auto build_right_here = [&] { right = build_right(right_builder); };
+        tasks_->fork(build_right_here, [&] { left = build_left(); });
         const bool own_items = &right_items != &items_;
         const std::uint32_t node_offset = std::uint32_t(nodes.size());
         const std::uint32_t item_offset = own_items ? std::uint32_t(items_.size()) : 0;
@@ -300,9 +275,6 @@ private:
         spatial_splits += right_builder.spatial_splits;
     }
 
-    /// Below this many primitives a subtree is not worth a thread.
-    static constexpr std::size_t parallel_threshold = 4096;
-
     /// From this many primitives a node bins its two halves on two threads.
     static constexpr std::size_t parallel_binning_threshold = 65536;
 
@@ -315,15 +287,10 @@ private:
     {
         const std::size_t used = bins_for(n, bin_count_);
         bins_.reset(centroids, used);
-        if (n >= parallel_binning_threshold && take_thread()) {
+        if (n >= parallel_binning_threshold && tasks_ != nullptr) {
             other_bins_.reset(centroids, used);
-            parallel_for(2, 2, [&](std::size_t half, int) {
-                if (half == 0)
-                    bins_.add(items, n / 2);
-                else
-                    other_bins_.add(items + n / 2, n - n / 2);
-            });
-            give_thread();
+            auto second_half = [&] { other_bins_.add(items + n / 2, n - n / 2); };
+            tasks_->fork(second_half, [&] { bins_.add(items, n / 2); });
             bins_.merge(other_bins_);
         } else {
             bins_.add(items, n);
@@ -351,8 +318,7 @@ private:
 
     std::vector<build_item>& items_;
     const bvh_options& options_;
-    std::atomic<int> own_available_{0}; ///< the idle threads, for the builder that starts the tree
-    std::atomic<int>* available_;       ///< the tree's count: own_available_ or the first builder's
+    build_tasks* tasks_; ///< nullptr: one thread
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
     std::size_t slice_count_; ///< the spatial search's slices per axis (bvh_options::spatial_bins)

@@ -14,6 +14,7 @@
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
+//   build_tasks.hpp     the build's threads: subtrees offered to idle ones
 //   binned_builder.hpp  the binned SAH build (Wald 2007), on threads
 //   wide_collapse.hpp   the binary tree made 4-wide
 //   node_test.hpp       a ray against a node's four boxes; nearest child first
@@ -21,8 +22,8 @@
 //   bvh.hpp             this file: build, then closest() and any()
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
-//     std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
-//     const rt::bvh tree(std::move(prims));
+//     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
+//     const rt::bvh tree(prims);
 //     rt::primitive_hit hit;
 //     if (tree.closest(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
 //     const bool blocked = tree.any(shadow_ray, 0, 1);
@@ -40,6 +41,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,11 +52,13 @@
 #include "../ray.hpp"
 #include "../watertight.hpp"
 #include "binned_builder.hpp"
+#include "build_tasks.hpp"
 #include "build_options.hpp"
 #include "layout.hpp"
 #include "leaf_test.hpp"
 #include "node_test.hpp"
 #include "packed.hpp"
+#include "parallel_fill.hpp"
 #include "wide_collapse.hpp"
 
 namespace rt {
@@ -65,40 +69,53 @@ class bvh {
 public:
     bvh() = default;
 
-    /// Builds the hierarchy; the primitives are reordered into leaf order.
-    explicit bvh(std::vector<packed_primitive> prims, const bvh_options& options = {})
-        : prims_(std::move(prims))
+    /// Builds the hierarchy over prims[0, count); the tree keeps its own copy
+    /// of them, four by four in leaf order (blocks()), not `prims`.
+    bvh(const packed_primitive* prims, std::size_t count, const bvh_options& options = {})
     {
-        stats_.primitives = prims_.size();
-        if (prims_.empty())
+        stats_.primitives = count;
+        if (count == 0)
             return;
-        if (prims_.size() >= std::size_t(leaf_flag))
-            throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(prims_.size()));
+        if (count >= std::size_t(leaf_flag))
+            throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(count));
         bvh_options used = options;
         used.max_depth = std::max(1, std::min(used.max_depth, max_depth));
         used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
+        // a tree too small to fork anywhere is built on this thread alone
+        const int threads = count < detail::binary_builder::parallel_threshold ? 1 : thread_count(used.threads);
 
-        std::vector<detail::build_item> items(prims_.size());
+        std::vector<detail::build_item> items(count);
         aabb scene_box;
-        for (std::size_t i = 0; i < prims_.size(); ++i) {
-            items[i].box = packed_bounds(prims_[i]);
-            items[i].centroid = items[i].box.center();
-            items[i].index = std::uint32_t(i);
-            scene_box.grow(items[i].box);
-        }
-        const int threads = thread_count(used.threads);
-        detail::binary_builder builder(items, used, threads - 1, prims_.data());
-        builder.nodes.reserve(prims_.size());
-        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(prims_.size()));
+        std::mutex scene_box_mutex; // and has_spheres_
+        detail::fill_in_parallel(count, threads, [&](std::size_t begin, std::size_t end) {
+            aabb part;
+            bool spheres = false;
+            for (std::size_t i = begin; i < end; ++i) {
+                items[i].box = packed_bounds(prims[i]);
+                items[i].centroid = items[i].box.center();
+                items[i].index = std::uint32_t(i);
+                part.grow(items[i].box);
+                spheres = spheres || (prims[i].id & sphere_flag) != 0;
+            }
+            const std::lock_guard<std::mutex> lock(scene_box_mutex);
+            scene_box.grow(part);
+            has_spheres_ = has_spheres_ || spheres;
+        });
+        detail::build_tasks tasks;
+        detail::binary_builder builder(items, used, threads > 1 ? &tasks : nullptr, prims);
+        builder.nodes.reserve(count);
+        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(count));
         detail::binary_child root;
-        if (budget > 0) {
-            std::vector<detail::build_item> refs;
-            refs.swap(items);
-            items.reserve(refs.size() + budget);
-            root = builder.build_spatial(std::move(refs), scene_box, 0, detail::half_area(scene_box), budget);
-        } else {
-            root = builder.build(0, items.size(), scene_box, 0);
-        }
+        tasks.run(threads, [&] {
+            if (budget > 0) {
+                std::vector<detail::build_item> refs;
+                refs.swap(items);
+                items.reserve(refs.size() + budget);
+                root = builder.build_spatial(std::move(refs), scene_box, 0, detail::half_area(scene_box), budget);
+            } else {
+                root = builder.build(0, items.size(), scene_box, 0);
+            }
+        });
         stats_.references = items.size();
         stats_.spatial_splits = builder.spatial_splits;
         const std::vector<detail::binary_node>& binary = builder.nodes;
@@ -109,28 +126,13 @@ public:
         nodes_.reserve(binary.size() / 2 + 1);
         detail::wide_collapser(binary, nodes_, stats_).collapse(root, 0);
         stats_.nodes = nodes_.size();
+        pack_blocks(prims, items, threads);
+    }
 
-        std::vector<packed_primitive> ordered(items.size());
-        for (std::size_t i = 0; i < items.size(); ++i) {
-            ordered[i] = prims_[items[i].index];
-            has_spheres_ = has_spheres_ || (ordered[i].id & sphere_flag) != 0;
-        }
-        prims_ = std::move(ordered);
-
-        // each leaf's primitives as blocks of four, in the order the nodes
-        // meet the leaves (depth first); the leaf's reference becomes its
-        // first block, count stays its number of primitives
-        blocks_.reserve(prims_.size() / 2 + 1);
-        for (bvh_node& node : nodes_)
-            for (int c = 0; c < 4; ++c) {
-                if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
-                    continue;
-                const std::size_t first = node.child[c] & ~leaf_flag;
-                node.child[c] = leaf_flag | std::uint32_t(blocks_.size());
-                for (std::size_t done = 0; done < node.count[c]; done += 4)
-                    blocks_.push_back(pack_triangle_block(prims_.data(), first + done,
-                                                          std::min<std::size_t>(4, node.count[c] - done)));
-            }
+    /// The same, over a vector.
+    explicit bvh(const std::vector<packed_primitive>& prims, const bvh_options& options = {})
+        : bvh(prims.data(), prims.size(), options)
+    {
     }
 
     /// The closest hit in [tmin, tmax] by replaces(), or false.
@@ -161,12 +163,14 @@ public:
     }
 
     const std::vector<bvh_node>& nodes() const { return nodes_; }
-    /// The references in build order (bvh_stats::references of them): each
-    /// primitive, once per piece where spatial splits cut it.
-    const std::vector<packed_primitive>& primitives() const { return prims_; }
-    /// The leaves' primitives as blocks of four (a leaf's reference in
-    /// bvh_node::child is leaf_flag | its first block).
-    const std::vector<triangle_block>& blocks() const { return blocks_; }
+    /// The leaves' primitives as blocks of four, in the order the nodes meet
+    /// the leaves (a leaf's reference in bvh_node::child is leaf_flag | its
+    /// first block); a primitive that spatial splits cut appears once per leaf
+    /// that holds a piece of it.
+    const std::vector<triangle_block, detail::default_init_allocator<triangle_block>>& blocks() const
+    {
+        return blocks_;
+    }
     const bvh_stats& stats() const { return stats_; }
 
     /// Whether the node test runs in SSE registers (x86-64 and rt::real = float).
@@ -178,6 +182,53 @@ public:
     static constexpr int stack_size = 3 * max_depth + 4;
 
 private:
+    /// Each leaf's primitives as blocks of four (layout.hpp), in the order the
+    /// nodes meet the leaves (depth first): first where each leaf's blocks
+    /// go, one pass over the nodes, then the blocks themselves on threads
+    /// (parallel_fill.hpp). A leaf's reference becomes its first block; count
+    /// stays its number of primitives.
+    void pack_blocks(const packed_primitive* prims, const std::vector<detail::build_item>& items, int threads)
+    {
+        struct leaf_blocks {
+            std::uint32_t first_item, count, first_block;
+        };
+        std::vector<leaf_blocks> leaves;
+        leaves.reserve(stats_.leaves);
+        std::size_t block_count = 0;
+        for (bvh_node& node : nodes_)
+            for (int c = 0; c < 4; ++c) {
+                if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
+                    continue;
+                leaves.push_back(leaf_blocks{node.child[c] & ~leaf_flag, node.count[c], std::uint32_t(block_count)});
+                node.child[c] = leaf_flag | std::uint32_t(block_count);
+                block_count += (node.count[c] + 3) / 4;
+            }
+        blocks_.resize(block_count); // not written yet: every block is assigned below
+        detail::fill_in_parallel(
+            leaves.size(), threads,
+            [&](std::size_t begin, std::size_t end) {
+                for (std::size_t l = begin; l < end; ++l) {
+                    // the primitives are read in leaf order, scattered over
+                    // prims: ask for those of a leaf 8 ahead (bunny-loop2's
+                    // blocks: 88 ms to 63 ms on one thread)
+#if defined(__GNUC__) || defined(__clang__)
+                    if (l + 8 < end)
+                        for (std::uint32_t k = 0; k < leaves[l + 8].count && k < 8; ++k)
+                            __builtin_prefetch(&prims[items[leaves[l + 8].first_item + k].index]);
+#endif
+                    const leaf_blocks& leaf = leaves[l];
+                    for (std::uint32_t done = 0; done < leaf.count; done += 4) {
+                        const packed_primitive* lanes[4] = {};
+                        const std::uint32_t n = std::min<std::uint32_t>(4, leaf.count - done);
+                        for (std::uint32_t lane = 0; lane < n; ++lane)
+                            lanes[lane] = &prims[items[leaf.first_item + done + lane].index];
+                        blocks_[leaf.first_block + done / 4] = pack_triangle_block(lanes, n);
+                    }
+                }
+            },
+            4096);
+    }
+
     /// A child waiting on the traversal stack, with the distance where the ray enters it.
     struct entry {
         std::uint32_t child, count;
@@ -326,9 +377,8 @@ private:
         }
     }
 
-    std::vector<packed_primitive> prims_;
     std::vector<bvh_node> nodes_;
-    std::vector<triangle_block> blocks_;
+    std::vector<triangle_block, detail::default_init_allocator<triangle_block>> blocks_;
     bool has_spheres_ = false;
     bvh_stats stats_;
 };

@@ -40,8 +40,8 @@ struct alignas(32) triangle_block {
     std::uint32_t id[4];
 };
 
-/// The block of prims[first, first + n), n <= 4.
-inline triangle_block pack_triangle_block(const packed_primitive* prims, std::size_t first, std::size_t n)
+/// The block of the primitives *lanes[0 .. n), n <= 4.
+inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4], std::size_t n)
 {
     triangle_block b;
     for (int j = 0; j < 9; ++j)
@@ -51,12 +51,21 @@ inline triangle_block pack_triangle_block(const packed_primitive* prims, std::si
         b.id[lane] = 0;
         if (lane >= n)
             continue;
-        const packed_primitive& p = prims[first + lane];
+        const packed_primitive& p = *lanes[lane];
         b.id[lane] = p.id;
         for (int j = 0; j < ((p.id & sphere_flag) ? 4 : 9); ++j)
             b.v[j][lane] = p.v[j];
     }
     return b;
+}
+
+/// The block of prims[first, first + n), n <= 4.
+inline triangle_block pack_triangle_block(const packed_primitive* prims, std::size_t first, std::size_t n)
+{
+    const packed_primitive* lanes[4] = {};
+    for (std::size_t lane = 0; lane < n && lane < 4; ++lane)
+        lanes[lane] = prims + first + lane;
+    return pack_triangle_block(lanes, n);
 }
 
 /// One 4-wide node (see the top of this file): the boxes of up to four
