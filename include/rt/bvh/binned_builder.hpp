@@ -107,45 +107,45 @@ public:
         overlap.hi = glm::min(object.left.hi, object.right.hi);
         if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
             return hand_over(&object, &centroids);
-        const spatial_split cut = find_spatial_split(refs, box, wide, slice_count_, prims_, options_.primitives_per_test);
+        const spatial_split cut = find_spatial_split(refs, box, wide);
 
-        std::vector<build_item> left, right;
+        sides parts;
         if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
-            for (const build_item& r : refs) {
+            parts = to_sides(refs, [&](const build_item& r, sides& out) {
                 if (r.box.hi[cut.axis] <= cut.plane) {
-                    left.push_back(r);
+                    out.add_left(r);
                 } else if (r.box.lo[cut.axis] >= cut.plane) {
-                    right.push_back(r);
+                    out.add_right(r);
                 } else {
                     const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
                     const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
                     if (below.empty()) {
-                        right.push_back(r);
+                        out.add_right(r);
                     } else if (above.empty()) {
-                        left.push_back(r);
+                        out.add_left(r);
                     } else {
-                        left.push_back(build_item{below, below.center(), r.index});
-                        right.push_back(build_item{above, above.center(), r.index});
+                        out.add_left(build_item{below, below.center(), r.index});
+                        out.add_right(build_item{above, above.center(), r.index});
                     }
                 }
-            }
-            if (left.empty() || right.empty()) {
-                std::vector<build_item>().swap(left);
-                std::vector<build_item>().swap(right);
-            } else {
-                budget -= std::min(budget, left.size() + right.size() - n);
+            });
+            if (parts.left.empty() || parts.right.empty())
+                parts = sides();
+            else {
+                budget -= std::min(budget, parts.left.size() + parts.right.size() - n);
                 ++spatial_splits;
             }
         }
-        if (left.empty() && right.empty()) // the object split, as build() makes it
-            for (const build_item& r : refs)
-                (object.left_of(r.centroid) ? left : right).push_back(r);
+        if (parts.left.empty() && parts.right.empty()) // the object split, as build() makes it
+            parts = to_sides(refs, [&](const build_item& r, sides& out) {
+                if (object.left_of(r.centroid))
+                    out.add_left(r);
+                else
+                    out.add_right(r);
+            });
         std::vector<build_item>().swap(refs);
-        aabb left_box, right_box;
-        for (const build_item& r : left)
-            left_box.grow(r.box);
-        for (const build_item& r : right)
-            right_box.grow(r.box);
+        std::vector<build_item> left = std::move(parts.left), right = std::move(parts.right);
+        const aabb left_box = parts.left_box, right_box = parts.right_box;
 
         // the budget left is shared by the children in proportion to their
         // references, so the tree does not depend on which is built first
@@ -296,6 +296,68 @@ private:
             bins_.add(items, n);
         }
         return bins_.best(n);
+    }
+
+    /// The best spatial split of a node's references (spatial_split.hpp),
+    /// binned in two halves on two threads from parallel_binning_threshold on.
+    spatial_split find_spatial_split(const std::vector<build_item>& refs, const aabb& box, const bool wide[3])
+    {
+        const std::size_t n = refs.size();
+        spatial_bins bins(box, wide, slice_count_);
+        if (n >= parallel_binning_threshold && tasks_ != nullptr) {
+            spatial_bins other(box, wide, slice_count_);
+            auto second_half = [&] { other.add(refs.data() + n / 2, n - n / 2, prims_); };
+            tasks_->fork(second_half, [&] { bins.add(refs.data(), n / 2, prims_); });
+            bins.merge(other);
+        } else {
+            bins.add(refs.data(), n, prims_);
+        }
+        return bins.best(n, options_.primitives_per_test);
+    }
+
+    /// A node's references sent to its two children (build_spatial), with
+    /// the boxes of each side.
+    struct sides {
+        std::vector<build_item> left, right;
+        aabb left_box, right_box;
+        void add_left(const build_item& r)
+        {
+            left.push_back(r);
+            left_box.grow(r.box);
+        }
+        void add_right(const build_item& r)
+        {
+            right.push_back(r);
+            right_box.grow(r.box);
+        }
+    };
+
+    /// to(r, sides) for every reference, in order; from
+    /// parallel_binning_threshold references on, the two halves on two
+    /// threads, joined in order: the same sides as one thread makes.
+    template <class To>
+    sides to_sides(const std::vector<build_item>& refs, const To& to)
+    {
+        const std::size_t n = refs.size();
+        const auto run = [&](std::size_t begin, std::size_t end, sides& out) {
+            out.left.reserve(end - begin);
+            out.right.reserve(end - begin);
+            for (std::size_t i = begin; i < end; ++i)
+                to(refs[i], out);
+        };
+        sides first;
+        if (n < parallel_binning_threshold || tasks_ == nullptr) {
+            run(0, n, first);
+            return first;
+        }
+        sides second;
+        auto second_half = [&] { run(n / 2, n, second); };
+        tasks_->fork(second_half, [&] { run(0, n / 2, first); });
+        first.left.insert(first.left.end(), second.left.begin(), second.left.end());
+        first.right.insert(first.right.end(), second.right.begin(), second.right.end());
+        first.left_box.grow(second.left_box);
+        first.right_box.grow(second.right_box);
+        return first;
     }
 
     binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)

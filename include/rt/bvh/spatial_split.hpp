@@ -92,35 +92,100 @@ struct spatial_split {
     std::size_t extra = 0;  ///< references that would go to both sides
 };
 
-/// The best plane between `bins` equal slices of the node's box, on any
-/// axis, with each reference's parts binned where they lie ("chopped
-/// binning", Stich et al. sec. 4): a reference spanning several slices
-/// adds the box of its part in each slice (clipped_box) and counts as
-/// entering its first slice and leaving its last.
-/// Axes where no reference is wider than a slice (wide[axis] false) are
-/// skipped: there a plane cuts next to nothing, and an object split
-/// does as well.
-inline spatial_split find_spatial_split(const std::vector<build_item>& refs, const aabb& box, const bool wide[3],
-                                        std::size_t count, const packed_primitive* prims, std::size_t per_test)
-{
-    const auto tests = [per_test](std::size_t n) { return leaf_tests(n, per_test); };
-    spatial_split best;
-    std::vector<aabb> slice(count), right_box(count);
-    std::vector<std::size_t> enter(count), leave(count), right_count(count);
-    std::vector<real> planes(count + 1);
-    for (int axis = 0; axis < 3; ++axis) {
-        const real low = box.lo[axis], extent = box.hi[axis] - box.lo[axis];
-        if (!wide[axis] || !(extent > 0))
-            continue;
-        const real scale = real(count) / extent;
-        for (std::size_t b = 0; b <= count; ++b) // once per axis, not once per crossing
-            planes[b] = low + extent * real(b) / real(count);
-        const auto plane = [&](std::size_t b) { return planes[b]; };
+/// The bins of the spatial split search of one node: `count` equal slices of
+/// the node's box on each axis, with each reference's parts binned where
+/// they lie ("chopped binning", Stich et al. sec. 4): a reference spanning
+/// several slices adds the box of its part in each slice and counts as
+/// entering its first slice and leaving its last. Axes where no reference is
+/// wider than a slice (wide[axis] false) are skipped: there a plane cuts next
+/// to nothing, and an object split does as well. Bins filled from two parts
+/// of the references and merged are the bins of the whole, whatever the
+/// order (a box grows by min and max, counts add), so two threads can fill
+/// them at the top of the tree.
+class spatial_bins {
+public:
+    spatial_bins(const aabb& box, const bool wide[3], std::size_t count)
+        : count_(count), slice_(3 * count), enter_(3 * count), leave_(3 * count), planes_(3 * (count + 1))
+    {
+        for (int axis = 0; axis < 3; ++axis) {
+            const real extent = box.hi[axis] - box.lo[axis];
+            if (!wide[axis] || !(extent > 0))
+                continue;
+            axes_[active_++] = axis;
+            low_[axis] = box.lo[axis];
+            scale_[axis] = real(count) / extent;
+            for (std::size_t b = 0; b <= count; ++b) // once per axis, not once per crossing
+                planes_[std::size_t(axis) * (count + 1) + b] = low_[axis] + extent * real(b) / real(count);
+        }
+    }
+
+    /// Bins n references, one axis after the other.
+    void add(const build_item* refs, std::size_t n, const packed_primitive* prims)
+    {
+        for (int k = 0; k < active_; ++k)
+            add_axis(refs, n, prims, axes_[k]);
+    }
+
+    void merge(const spatial_bins& other)
+    {
+        for (std::size_t b = 0; b < slice_.size(); ++b) {
+            slice_[b].grow(other.slice_[b]);
+            enter_[b] += other.enter_[b];
+            leave_[b] += other.leave_[b];
+        }
+    }
+
+    /// The plane of least SAH cost for the n references binned.
+    spatial_split best(std::size_t n, std::size_t per_test) const
+    {
+        const auto tests = [per_test](std::size_t m) { return leaf_tests(m, per_test); };
+        spatial_split best;
+        std::vector<aabb> right_box(count_);
+        std::vector<std::size_t> right_count(count_);
+        for (int k = 0; k < active_; ++k) {
+            const int axis = axes_[k];
+            const aabb* slice = slice_.data() + std::size_t(axis) * count_;
+            const std::size_t* enter = enter_.data() + std::size_t(axis) * count_;
+            const std::size_t* leave = leave_.data() + std::size_t(axis) * count_;
+            aabb accumulated;
+            std::size_t on_right = 0;
+            for (std::size_t b = count_ - 1; b > 0; --b) {
+                accumulated.grow(slice[b]);
+                on_right += leave[b];
+                right_box[b] = accumulated;
+                right_count[b] = on_right;
+            }
+            aabb left;
+            std::size_t on_left = 0;
+            for (std::size_t b = 1; b < count_; ++b) {
+                left.grow(slice[b - 1]);
+                on_left += enter[b - 1];
+                if (on_left == 0 || right_count[b] == 0)
+                    continue;
+                const real cost = half_area(left) * tests(on_left) + half_area(right_box[b]) * tests(right_count[b]);
+                if (best.axis < 0 || cost < best.cost) {
+                    best.axis = axis;
+                    best.plane = planes_[std::size_t(axis) * (count_ + 1) + b];
+                    best.cost = cost;
+                    best.extra = on_left + right_count[b] - n;
+                }
+            }
+        }
+        return best;
+    }
+
+private:
+    void add_axis(const build_item* refs, std::size_t n, const packed_primitive* prims, int axis)
+    {
+        const std::size_t count = count_;
+        const real low = low_[axis], scale = scale_[axis];
+        const real* planes = planes_.data() + std::size_t(axis) * (count + 1);
+        aabb* slice = slice_.data() + std::size_t(axis) * count;
+        std::size_t* enter = enter_.data() + std::size_t(axis) * count;
+        std::size_t* leave = leave_.data() + std::size_t(axis) * count;
         const auto slot = [&](real x) { return bin_of(x, low, scale, count); };
-        std::fill(slice.begin(), slice.end(), aabb{});
-        std::fill(enter.begin(), enter.end(), 0);
-        std::fill(leave.begin(), leave.end(), 0);
-        for (const build_item& r : refs) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const build_item& r = refs[i];
             const std::size_t first = slot(r.box.lo[axis]), last = slot(r.box.hi[axis]);
             ++enter[first];
             ++leave[last];
@@ -132,8 +197,8 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
             if (p.id & sphere_flag) { // the slab of the box
                 for (std::size_t b = first; b <= last; ++b) {
                     aabb part = r.box;
-                    part.lo[axis] = std::max(part.lo[axis], plane(b));
-                    part.hi[axis] = std::min(part.hi[axis], plane(b + 1));
+                    part.lo[axis] = std::max(part.lo[axis], planes[b]);
+                    part.hi[axis] = std::min(part.hi[axis], planes[b + 1]);
                     slice[b].grow(part);
                 }
                 continue;
@@ -143,10 +208,10 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
             // where an edge crosses a plane to the slices on both sides,
             // all held inside the reference's box.
             const auto held = [&](const vec3& q) { return glm::clamp(q, r.box.lo, r.box.hi); };
-            for (int i = 0; i < 3; ++i) {
-                const vec3 u(p.v[3 * i], p.v[3 * i + 1], p.v[3 * i + 2]);
+            for (int c = 0; c < 3; ++c) {
+                const vec3 u(p.v[3 * c], p.v[3 * c + 1], p.v[3 * c + 2]);
                 slice[std::max(first, std::min(last, slot(u[axis])))].grow(held(u));
-                const int j = (i + 1) % 3;
+                const int j = (c + 1) % 3;
                 vec3 a = u, b(p.v[3 * j], p.v[3 * j + 1], p.v[3 * j + 2]);
                 if (a[axis] > b[axis])
                     std::swap(a, b);
@@ -155,39 +220,23 @@ inline spatial_split find_spatial_split(const std::vector<build_item>& refs, con
                     continue;
                 const real inverse = real(1) / (b[axis] - a[axis]); // one division per edge
                 for (std::size_t k = from + 1; k <= to; ++k) {
-                    const real s = plane(k);
+                    const real s = planes[k];
                     const vec3 q = held(a + (b - a) * ((s - a[axis]) * inverse));
                     slice[k - 1].grow(q);
                     slice[k].grow(q);
                 }
             }
         }
-        aabb accumulated;
-        std::size_t on_right = 0;
-        for (std::size_t b = count - 1; b > 0; --b) {
-            accumulated.grow(slice[b]);
-            on_right += leave[b];
-            right_box[b] = accumulated;
-            right_count[b] = on_right;
-        }
-        aabb left;
-        std::size_t on_left = 0;
-        for (std::size_t b = 1; b < count; ++b) {
-            left.grow(slice[b - 1]);
-            on_left += enter[b - 1];
-            if (on_left == 0 || right_count[b] == 0)
-                continue;
-            const real cost = half_area(left) * tests(on_left) + half_area(right_box[b]) * tests(right_count[b]);
-            if (best.axis < 0 || cost < best.cost) {
-                best.axis = axis;
-                best.plane = plane(b);
-                best.cost = cost;
-                best.extra = on_left + right_count[b] - refs.size();
-            }
-        }
     }
-    return best;
-}
+
+    std::size_t count_;
+    std::vector<aabb> slice_;                 ///< slice_[axis * count + b]
+    std::vector<std::size_t> enter_, leave_;  ///< the same layout
+    std::vector<real> planes_;                ///< planes_[axis * (count + 1) + b]: the planes between slices
+    int axes_[3] = {0, 0, 0};                 ///< the axes binned, active_ of them
+    int active_ = 0;
+    real low_[3] = {0, 0, 0}, scale_[3] = {0, 0, 0};
+};
 
 } // namespace detail
 } // namespace rt
