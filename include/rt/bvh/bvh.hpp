@@ -15,6 +15,7 @@
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
 //   build_tasks.hpp     the build's threads: subtrees offered to idle ones
+//   parallel_fill.hpp   large arrays written on the build's threads
 //   binned_builder.hpp  the binned SAH build (Wald 2007), on threads
 //   wide_collapse.hpp   the binary tree made 4-wide
 //   node_test.hpp       a ray against a node's four boxes; nearest child first

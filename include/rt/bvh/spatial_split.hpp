@@ -26,6 +26,8 @@
 #include "build_options.hpp"
 #include "packed.hpp"
 
+#include "simd_begin.hpp" // RT_BVH_SSE and the intrinsics, until simd_end.hpp
+
 namespace rt {
 namespace detail {
 
@@ -184,15 +186,42 @@ private:
         std::size_t* enter = enter_.data() + std::size_t(axis) * count;
         std::size_t* leave = leave_.data() + std::size_t(axis) * count;
         const auto slot = [&](real x) { return bin_of(x, low, scale, count); };
+#if RT_BVH_SSE
+        // A reference within one slice (most of them) grows that slice's box
+        // in two SSE registers, and the references alternate between two
+        // sets of boxes and counts, merged below: neighbouring references
+        // fall in the same slice, and each would wait for the last one's
+        // store to it (as in sah_bins). Boxes grow by min and max and counts
+        // add, so the slices are the same as one set's.
+        static_assert(sizeof(aabb) == 6 * sizeof(float), "the loads below read lo.xyz hi.x and hi.xyz then the next float");
+        narrow_.assign(2 * count, narrow_box{_mm_set1_ps(std::numeric_limits<float>::infinity()),
+                                             _mm_set1_ps(-std::numeric_limits<float>::infinity())});
+        narrow_enter_.assign(2 * count, 0);
+        narrow_leave_.assign(2 * count, 0);
+        std::size_t set = 0; // 0 or count: the set of this reference
+#endif
         for (std::size_t i = 0; i < n; ++i) {
             const build_item& r = refs[i];
             const std::size_t first = slot(r.box.lo[axis]), last = slot(r.box.hi[axis]);
+#if RT_BVH_SSE
+            ++narrow_enter_[set + first];
+            ++narrow_leave_[set + last];
+            if (first == last) {
+                narrow_box& box = narrow_[set + first];
+                box.lo = _mm_min_ps(box.lo, _mm_loadu_ps(&r.box.lo.x));
+                box.hi = _mm_max_ps(box.hi, _mm_loadu_ps(&r.box.hi.x));
+                set ^= count;
+                continue;
+            }
+            set ^= count;
+#else
             ++enter[first];
             ++leave[last];
             if (first == last) {
                 slice[first].grow(r.box);
                 continue;
             }
+#endif
             const packed_primitive& p = prims[r.index];
             if (p.id & sphere_flag) { // the slab of the box
                 for (std::size_t b = first; b <= last; ++b) {
@@ -227,6 +256,18 @@ private:
                 }
             }
         }
+#if RT_BVH_SSE
+        for (std::size_t b = 0; b < count; ++b) {
+            alignas(16) float lo[4], hi[4];
+            for (const std::size_t at : {b, count + b}) {
+                _mm_store_ps(lo, narrow_[at].lo);
+                _mm_store_ps(hi, narrow_[at].hi);
+                slice[b].grow(aabb{vec3(lo[0], lo[1], lo[2]), vec3(hi[0], hi[1], hi[2])});
+                enter[b] += narrow_enter_[at];
+                leave[b] += narrow_leave_[at];
+            }
+        }
+#endif
     }
 
     std::size_t count_;
@@ -236,7 +277,16 @@ private:
     int axes_[3] = {0, 0, 0};                 ///< the axes binned, active_ of them
     int active_ = 0;
     real low_[3] = {0, 0, 0}, scale_[3] = {0, 0, 0};
+#if RT_BVH_SSE
+    struct narrow_box {
+        __m128 lo, hi;
+    };
+    std::vector<narrow_box> narrow_;                       ///< add_axis's two sets of slice boxes
+    std::vector<std::size_t> narrow_enter_, narrow_leave_; ///< and counts
+#endif
 };
 
 } // namespace detail
 } // namespace rt
+
+#include "simd_end.hpp"
