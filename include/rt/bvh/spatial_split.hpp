@@ -236,6 +236,39 @@ private:
             // clipped_box): each corner goes to its slice and each point
             // where an edge crosses a plane to the slices on both sides,
             // all held inside the reference's box.
+#if RT_BVH_SSE
+            // the same points in SSE, into the slice boxes of the narrow
+            // references: a corner is loaded as x y z and the next float
+            // (the next corner's x, or the id's bits), a lane never read
+            static_assert(offsetof(packed_primitive, id) == 9 * sizeof(float), "corner c is v[3 c .. 3 c + 2]");
+            const __m128 box_lo = _mm_loadu_ps(&r.box.lo.x), box_hi = _mm_loadu_ps(&r.box.hi.x);
+            const auto held = [&](__m128 q) { return _mm_min_ps(box_hi, _mm_max_ps(box_lo, q)); }; // glm::clamp
+            const auto grow = [&](std::size_t k, __m128 q) {
+                narrow_box& box = narrow_[set + k];
+                box.lo = _mm_min_ps(q, box.lo);
+                box.hi = _mm_max_ps(q, box.hi);
+            };
+            for (int c = 0; c < 3; ++c) {
+                const int j = (c + 1) % 3;
+                __m128 a = _mm_loadu_ps(p.v + 3 * c), b = _mm_loadu_ps(p.v + 3 * j);
+                real a_axis = p.v[3 * c + axis], b_axis = p.v[3 * j + axis];
+                grow(std::max(first, std::min(last, slot(a_axis))), held(a));
+                if (a_axis > b_axis) {
+                    std::swap(a, b);
+                    std::swap(a_axis, b_axis);
+                }
+                const std::size_t from = std::max(first, slot(a_axis)), to = std::min(last, slot(b_axis));
+                if (from >= to)
+                    continue;
+                const real inverse = real(1) / (b_axis - a_axis); // one division per edge
+                const __m128 ab = _mm_sub_ps(b, a);
+                for (std::size_t k = from + 1; k <= to; ++k) {
+                    const __m128 q = held(_mm_add_ps(a, _mm_mul_ps(ab, _mm_set1_ps((planes[k] - a_axis) * inverse))));
+                    grow(k - 1, q);
+                    grow(k, q);
+                }
+            }
+#else
             const auto held = [&](const vec3& q) { return glm::clamp(q, r.box.lo, r.box.hi); };
             for (int c = 0; c < 3; ++c) {
                 const vec3 u(p.v[3 * c], p.v[3 * c + 1], p.v[3 * c + 2]);
@@ -255,6 +288,7 @@ private:
                     slice[k].grow(q);
                 }
             }
+#endif
         }
 #if RT_BVH_SSE
         for (std::size_t b = 0; b < count; ++b) {
