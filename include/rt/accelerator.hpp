@@ -38,7 +38,6 @@
 #include "error.hpp"
 #include "hit_record.hpp"
 #include "mesh.hpp"
-#include "parallel.hpp"
 #include "ray.hpp"
 #include "scene.hpp"
 #include "shape_hit.hpp"
@@ -112,7 +111,7 @@ public:
         // array that is not first cleared (bvh/parallel_fill.hpp)
         first_id_.reserve(s.shapes.size() + 1);
         std::vector<packed_primitive, detail::default_init_allocator<packed_primitive>> prims(count);
-        const int threads = count < detail::binary_builder::parallel_threshold ? 1 : thread_count(options.threads);
+        const int threads = detail::binary_builder::threads_for(count, options.threads);
         std::size_t id = 0;
         for (const shape& item : s.shapes) {
             first_id_.push_back(std::uint32_t(id));

@@ -22,6 +22,7 @@
 
 #include "../aabb.hpp"
 #include "../config.hpp"
+#include "../parallel.hpp"
 #include "../vec.hpp"
 #include "build_options.hpp"
 #include "build_tasks.hpp"
@@ -54,9 +55,14 @@ public:
     {
     }
 
-    /// Below this many primitives a subtree is not worth a thread (a whole
-    /// tree below it is built on one: bvh.hpp).
+    /// Below this many primitives a subtree is not worth a thread.
     static constexpr std::size_t parallel_threshold = 4096;
+
+    /// The threads a build over n primitives uses: one for a tree too small to fork.
+    static int threads_for(std::size_t n, int requested)
+    {
+        return n < parallel_threshold ? 1 : thread_count(requested);
+    }
 
     std::vector<binary_node> nodes;
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
@@ -278,6 +284,9 @@ private:
     /// From this many primitives a node bins its two halves on two threads.
     static constexpr std::size_t parallel_binning_threshold = 65536;
 
+    /// Whether a node's binning, spatial search and move to the sides run in two halves.
+    bool in_halves(std::size_t n) const { return n >= parallel_binning_threshold && tasks_ != nullptr; }
+
     /// The leaf tests that n primitives cost: ceil(n / primitives_per_test)
     /// (the SIMD leaf test handles a block of four triangles at the price of
     /// about one; Embree's SAH counts its triangle4 blocks the same way).
@@ -287,7 +296,7 @@ private:
     {
         const std::size_t used = bins_for(n, bin_count_);
         bins_.reset(centroids, used);
-        if (n >= parallel_binning_threshold && tasks_ != nullptr) {
+        if (in_halves(n)) {
             other_bins_.reset(centroids, used);
             auto second_half = [&] { other_bins_.add(items + n / 2, n - n / 2); };
             tasks_->fork(second_half, [&] { bins_.add(items, n / 2); });
@@ -304,7 +313,7 @@ private:
     {
         const std::size_t n = refs.size();
         spatial_bins bins(box, wide, slice_count_);
-        if (n >= parallel_binning_threshold && tasks_ != nullptr) {
+        if (in_halves(n)) {
             spatial_bins other(box, wide, slice_count_);
             auto second_half = [&] { other.add(refs.data() + n / 2, n - n / 2, prims_); };
             tasks_->fork(second_half, [&] { bins.add(refs.data(), n / 2, prims_); });
@@ -346,7 +355,7 @@ private:
                 to(refs[i], out);
         };
         sides first;
-        if (n < parallel_binning_threshold || tasks_ == nullptr) {
+        if (!in_halves(n)) {
             run(0, n, first);
             return first;
         }

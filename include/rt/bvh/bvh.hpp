@@ -49,7 +49,6 @@
 
 #include "../aabb.hpp"
 #include "../error.hpp"
-#include "../parallel.hpp"
 #include "../ray.hpp"
 #include "../watertight.hpp"
 #include "binned_builder.hpp"
@@ -82,8 +81,7 @@ public:
         bvh_options used = options;
         used.max_depth = std::max(1, std::min(used.max_depth, max_depth));
         used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
-        // a tree too small to fork anywhere is built on this thread alone
-        const int threads = count < detail::binary_builder::parallel_threshold ? 1 : thread_count(used.threads);
+        const int threads = detail::binary_builder::threads_for(count, used.threads);
 
         std::vector<detail::build_item> items(count);
         aabb scene_box;
