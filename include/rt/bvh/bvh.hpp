@@ -328,7 +328,7 @@ private:
                 for (std::uint32_t done = 0; done < count; done += 4, ++block) {
                     triangle_hit hits[4];
                     int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
-                                      : detail::intersect_block(*block, lr, wr, tmin, closest_t, hits);
+                                      : detail::intersect_block<!any_hit>(*block, lr, wr, tmin, closest_t, hits);
                     if (mask != 0 && any_hit)
                         return true;
                     for (int lane = 0; mask != 0; ++lane, mask >>= 1) {

@@ -24,10 +24,10 @@ namespace rt {
 namespace detail {
 
 /// The ray as the leaf test reads it: the watertight test's permutation as
-/// rows of triangle_block::v (row_x[i] = 3 i + kx: corner i's kx coordinate)
-/// and, with SSE, the origin and the shear in all four lanes.
+/// rows of triangle_block::v (corner i's kx coordinate is row 3 i + kx) and,
+/// with SSE, the origin and the shear in all four lanes.
 struct leaf_ray {
-    int row_x[3], row_y[3], row_z[3];
+    int kx, ky, kz;
 #if RT_BVH_SSE
     __m128 px, py, pz;  ///< p_kx, p_ky, p_kz
     __m128 Sx, Sy, Sz;
@@ -37,11 +37,9 @@ struct leaf_ray {
 inline leaf_ray make_leaf_ray(const watertight_ray& w)
 {
     leaf_ray r;
-    for (int i = 0; i < 3; ++i) {
-        r.row_x[i] = 3 * i + w.kx;
-        r.row_y[i] = 3 * i + w.ky;
-        r.row_z[i] = 3 * i + w.kz;
-    }
+    r.kx = w.kx;
+    r.ky = w.ky;
+    r.kz = w.kz;
 #if RT_BVH_SSE
     r.px = _mm_set1_ps(float(w.p[w.kx]));
     r.py = _mm_set1_ps(float(w.p[w.ky]));
@@ -139,21 +137,27 @@ inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 /// checks it on rays through shared edges and vertices). Only a lane whose t is
 /// within its error bound leaves SIMD, for t_beyond_error_in_double. Needs
 /// -ffp-contract=off on FMA targets, as the scalar test does: a fused
-/// multiply-add would round the shear differently here and there.
-inline int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, float tmin,
-                               float tmax, triangle_hit hits[4])
+/// multiply-add would round the shear differently here and there. With
+/// `with_hits` false (any hit) only the mask is computed, hits[] is not written.
+template <bool with_hits = true>
+RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, float tmin,
+                                      float tmax, triangle_hit hits[4])
 {
     const __m128 zero = _mm_setzero_ps();
-    // corners translated to the origin and permuted: x (kx), y (ky), z (kz)
-    const __m128 ax = _mm_sub_ps(_mm_load_ps(b.v[r.row_x[0]]), r.px);
-    const __m128 bx = _mm_sub_ps(_mm_load_ps(b.v[r.row_x[1]]), r.px);
-    const __m128 cx = _mm_sub_ps(_mm_load_ps(b.v[r.row_x[2]]), r.px);
-    const __m128 ay = _mm_sub_ps(_mm_load_ps(b.v[r.row_y[0]]), r.py);
-    const __m128 by = _mm_sub_ps(_mm_load_ps(b.v[r.row_y[1]]), r.py);
-    const __m128 cy = _mm_sub_ps(_mm_load_ps(b.v[r.row_y[2]]), r.py);
-    const __m128 az = _mm_sub_ps(_mm_load_ps(b.v[r.row_z[0]]), r.pz);
-    const __m128 bz = _mm_sub_ps(_mm_load_ps(b.v[r.row_z[1]]), r.pz);
-    const __m128 cz = _mm_sub_ps(_mm_load_ps(b.v[r.row_z[2]]), r.pz);
+    // corners translated to the origin and permuted: x (kx), y (ky), z (kz);
+    // corner i's rows are 3 i + kx, 3 i + ky, 3 i + kz (three offsets, not nine)
+    const float* x = b.v[r.kx];
+    const float* y = b.v[r.ky];
+    const float* z = b.v[r.kz];
+    const __m128 ax = _mm_sub_ps(_mm_load_ps(x), r.px);
+    const __m128 bx = _mm_sub_ps(_mm_load_ps(x + 12), r.px);
+    const __m128 cx = _mm_sub_ps(_mm_load_ps(x + 24), r.px);
+    const __m128 ay = _mm_sub_ps(_mm_load_ps(y), r.py);
+    const __m128 by = _mm_sub_ps(_mm_load_ps(y + 12), r.py);
+    const __m128 cy = _mm_sub_ps(_mm_load_ps(y + 24), r.py);
+    const __m128 az = _mm_sub_ps(_mm_load_ps(z), r.pz);
+    const __m128 bz = _mm_sub_ps(_mm_load_ps(z + 12), r.pz);
+    const __m128 cz = _mm_sub_ps(_mm_load_ps(z + 24), r.pz);
     // sheared
     const __m128 Ax = _mm_sub_ps(ax, _mm_mul_ps(r.Sx, az));
     const __m128 Ay = _mm_sub_ps(ay, _mm_mul_ps(r.Sy, az));
@@ -208,8 +212,8 @@ inline int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const
     for (int doubtful = mask & ~beyond, lane = 0; doubtful != 0; ++lane, doubtful >>= 1)
         if ((doubtful & 1) && !t_beyond_error_in_double(w, &b.v[0][lane], 4))
             mask &= ~(1 << lane);
-    if (mask == 0)
-        return 0;
+    if (!with_hits || mask == 0)
+        return mask;
     alignas(16) float out[4][4];
     _mm_store_ps(out[0], t);
     _mm_store_ps(out[1], _mm_mul_ps(U, inv_det));
@@ -228,11 +232,12 @@ inline int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const
 
 /// The leaf test of bvh traversal: intersect_block_sse where SSE is there,
 /// else intersect_block_scalar. Both give the same bits.
-inline int intersect_block(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, real tmin, real tmax,
-                           triangle_hit hits[4])
+template <bool with_hits = true>
+RT_BVH_INLINE int intersect_block(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, real tmin,
+                                  real tmax, triangle_hit hits[4])
 {
 #if RT_BVH_SSE
-    return intersect_block_sse(b, r, w, tmin, tmax, hits);
+    return intersect_block_sse<with_hits>(b, r, w, tmin, tmax, hits);
 #else
     (void)r;
     return intersect_block_scalar(b, w, tmin, tmax, hits);

@@ -11,6 +11,7 @@
 //    branch would mispredict (docs/performance.md, experiment 6).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -36,6 +37,8 @@ struct node_ray {
     real inv_dir[3];
     int near_row[3];  ///< per axis, the row of bvh_node::bounds met first: 2 k (lo) or 2 k + 1 (hi)
     int far_row[3];
+    std::size_t near_offset[3];  ///< the same rows as byte offsets into a node (no index arithmetic per visit)
+    std::size_t far_offset[3];
 #if RT_BVH_SSE
     __m128 origin4[3];   ///< the origin's k-th coordinate in all four lanes
     __m128 inv_dir4[3];  ///< 1/d_k in all four lanes
@@ -51,6 +54,8 @@ inline node_ray make_node_ray(const ray& r)
         n.inv_dir[k] = b.inv_dir[k];
         n.near_row[k] = 2 * k + b.negative[k];
         n.far_row[k] = 2 * k + 1 - b.negative[k];
+        n.near_offset[k] = std::size_t(n.near_row[k]) * sizeof(bvh_node::bounds[0]);
+        n.far_offset[k] = std::size_t(n.far_row[k]) * sizeof(bvh_node::bounds[0]);
 #if RT_BVH_SSE
         n.origin4[k] = _mm_set1_ps(float(b.origin[k]));
         n.inv_dir4[k] = _mm_set1_ps(float(b.inv_dir[k]));
@@ -86,12 +91,14 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
 inline int intersect_children_sse(const bvh_node& node, const node_ray& r, float tmin, float tmax, float tnear[4])
 {
     // the three axes written out: the compiler keeps every value in a register
-    const __m128 near_x = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[0]]), r.origin4[0]), r.inv_dir4[0]);
-    const __m128 far_x = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[0]]), r.origin4[0]), r.inv_dir4[0]);
-    const __m128 near_y = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[1]]), r.origin4[1]), r.inv_dir4[1]);
-    const __m128 far_y = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[1]]), r.origin4[1]), r.inv_dir4[1]);
-    const __m128 near_z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.near_row[2]]), r.origin4[2]), r.inv_dir4[2]);
-    const __m128 far_z = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(node.bounds[r.far_row[2]]), r.origin4[2]), r.inv_dir4[2]);
+    const char* base = reinterpret_cast<const char*>(node.bounds);
+    auto row = [base](std::size_t offset) { return _mm_load_ps(reinterpret_cast<const float*>(base + offset)); };
+    const __m128 near_x = _mm_mul_ps(_mm_sub_ps(row(r.near_offset[0]), r.origin4[0]), r.inv_dir4[0]);
+    const __m128 far_x = _mm_mul_ps(_mm_sub_ps(row(r.far_offset[0]), r.origin4[0]), r.inv_dir4[0]);
+    const __m128 near_y = _mm_mul_ps(_mm_sub_ps(row(r.near_offset[1]), r.origin4[1]), r.inv_dir4[1]);
+    const __m128 far_y = _mm_mul_ps(_mm_sub_ps(row(r.far_offset[1]), r.origin4[1]), r.inv_dir4[1]);
+    const __m128 near_z = _mm_mul_ps(_mm_sub_ps(row(r.near_offset[2]), r.origin4[2]), r.inv_dir4[2]);
+    const __m128 far_z = _mm_mul_ps(_mm_sub_ps(row(r.far_offset[2]), r.origin4[2]), r.inv_dir4[2]);
     const __m128 t0 = _mm_max_ps(near_z, _mm_max_ps(near_y, _mm_max_ps(near_x, _mm_set1_ps(tmin))));
     const __m128 t1 = _mm_min_ps(far_z, _mm_min_ps(far_y, _mm_min_ps(far_x, _mm_set1_ps(tmax))));
     _mm_storeu_ps(tnear, t0);

@@ -1,5 +1,6 @@
 // bvh/simd_begin.hpp - opens the SIMD section of a fast-path header: defines
-// RT_BVH_SSE and RT_BVH_AVX and includes the intrinsics they allow. Every
+// RT_BVH_SSE and RT_BVH_AVX, includes the intrinsics they allow, and defines
+// RT_BVH_INLINE. Every
 // header that includes it includes simd_end.hpp after its last line of code,
 // so the two macros never leave the fast path (no #pragma once: each section
 // opens anew).
@@ -31,5 +32,16 @@
 #include <immintrin.h>
 #else
 #define RT_BVH_AVX 0
+#endif
+#endif
+
+// RT_BVH_INLINE: a per-ray kernel the compiler must inline into the traversal
+// loop (g++ kept the leaf test a call: its ray's rows and registers were then
+// reloaded for every block; docs/performance.md, experiment 6).
+#if !defined(RT_BVH_INLINE)
+#if defined(__GNUC__) || defined(__clang__)
+#define RT_BVH_INLINE inline __attribute__((always_inline))
+#else
+#define RT_BVH_INLINE inline
 #endif
 #endif

@@ -4,3 +4,4 @@
 
 #undef RT_BVH_SSE
 #undef RT_BVH_AVX
+#undef RT_BVH_INLINE
