@@ -16,7 +16,6 @@
 #include <cmath>
 #include <type_traits>
 
-#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "hit_record.hpp"
@@ -64,10 +63,14 @@ inline vec3 triangle_normal(const vec3& a, const vec3& b, const vec3& c)
     // (compared by hand: std::fmax is a call into the maths library, and the
     // components are never NaN for finite corners)
     const wide ax = std::fabs(n[0]), ay = std::fabs(n[1]), az = std::fabs(n[2]);
-    const wide largest = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
-    if (!(largest > 0) || !std::isfinite(largest))
-        return vec3(0);
     if constexpr (std::is_same_v<real, float>) {
+        // no normal when all three are zero, or one is not finite: tested on
+        // their sum (finite exactly when all three are, see below), not on the
+        // largest, whose choice is a branch that a hit's random orientation
+        // mispredicts (docs/performance.md, experiment 6)
+        const wide sum = ax + ay + az;
+        if (!(sum > 0) || !std::isfinite(sum))
+            return vec3(0);
         // From float corners no square overflows or underflows in double: a
         // nonzero component is a multiple of 2^-298 (a difference of products
         // of differences of floats) below 2^259, so its square lies between
@@ -76,6 +79,9 @@ inline vec3 triangle_normal(const vec3& a, const vec3& b, const vec3& c)
         const wide inv_length = 1 / std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         return vec3(real(n[0] * inv_length), real(n[1] * inv_length), real(n[2] * inv_length));
     } else {
+        const wide largest = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
+        if (!(largest > 0) || !std::isfinite(largest))
+            return vec3(0);
         // scaled by the largest component first, so neither the squares
         // overflow nor they underflow for tiny triangles
         const wide x = n[0] / largest, y = n[1] / largest, z = n[2] / largest;
@@ -97,12 +103,16 @@ inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, co
 {
     rec.t = h.t;
     rec.point = h.b0 * a + h.b1 * b + h.b2 * c;
-    rec.point_error = gamma_n(7) * (glm::abs(h.b0 * a) + glm::abs(h.b1 * b) + glm::abs(h.b2 * c));
+    // |x| as std::fabs, one instruction (glm::abs compares and selects)
+    auto abs3 = [](const vec3& v) { return vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)); };
+    rec.point_error = gamma_n(7) * (abs3(h.b0 * a) + abs3(h.b1 * b) + abs3(h.b2 * c));
     vec3 n = triangle_normal(a, b, c);
     if (n == vec3(0))
         n = -glm::normalize(r.direction);
     rec.front_face = glm::dot(r.direction, n) < 0;
-    rec.geometric_normal = rec.front_face ? n : -n;
+    // n or -n by a factor of +-1 (exact), not a branch: from inside a model
+    // the side a ray meets is a coin toss
+    rec.geometric_normal = n * (real(2) * real(rec.front_face) - real(1));
     rec.normal = rec.geometric_normal;
     rec.b1 = h.b1;
     rec.b2 = h.b2;
