@@ -1,9 +1,8 @@
 // bvh/simd_begin.hpp - opens the SIMD section of a fast-path header: defines
 // RT_BVH_SSE and RT_BVH_AVX, includes the intrinsics they allow, and defines
-// RT_BVH_INLINE. Every
-// header that includes it includes simd_end.hpp after its last line of code,
-// so the two macros never leave the fast path (no #pragma once: each section
-// opens anew).
+// RT_BVH_INLINE. Every header that includes it includes simd_end.hpp after
+// its last line of code, so the three macros never leave the fast path (no
+// #pragma once: each section opens anew).
 //
 //     #include "simd_begin.hpp"
 //     #if RT_BVH_SSE
