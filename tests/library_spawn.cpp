@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -56,6 +57,44 @@ struct surface_target {
 namespace {
 
 } // namespace
+
+TEST_CASE("next_up and next_down step one representable value, as std::nextafter does")
+{
+    // spawned rays round their origins with these (rounding.hpp); they step
+    // the bit pattern instead of calling the maths library, and must give
+    // std::nextafter's value, bit for bit, everywhere
+    using limits = std::numeric_limits<real>;
+    std::vector<real> values = {real(0),          -real(0),          limits::denorm_min(), -limits::denorm_min(),
+                                limits::min(),    -limits::min(),    limits::max(),        -limits::max(),
+                                limits::infinity(), -limits::infinity(), real(1),          real(-1),
+                                real(1e-30),      real(-3.5e20)};
+    std::mt19937 gen(17);
+    std::uniform_int_distribution<int> exponent(-140, 120);
+    std::uniform_real_distribution<double> mantissa(-1, 1);
+    for (int k = 0; k < 20000; ++k)
+        values.push_back(real(std::ldexp(mantissa(gen), exponent(gen))));
+    auto bits = [](real x) {
+        std::conditional_t<sizeof(real) == 4, std::uint32_t, std::uint64_t> b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+    };
+    std::size_t wrong = 0;
+    for (const real x : values) {
+        const bool up_ok = bits(rt::next_up(x)) == bits(std::nextafter(x, limits::infinity()));
+        const bool down_ok = bits(rt::next_down(x)) == bits(std::nextafter(x, -limits::infinity()));
+        if (!up_ok || !down_ok) {
+            ++wrong;
+            INFO("x = " << x << ": next_up " << rt::next_up(x) << ", next_down " << rt::next_down(x));
+            CHECK(up_ok);
+            CHECK(down_ok);
+        }
+    }
+    CHECK_MESSAGE(wrong == 0, "expected next_up and next_down to equal std::nextafter on all " << values.size()
+                                                                                           << " values, found "
+                                                                                           << wrong << " different");
+    CHECK(std::isnan(rt::next_up(limits::quiet_NaN())));
+    CHECK(std::isnan(rt::next_down(limits::quiet_NaN())));
+}
 
 TEST_CASE("a ray spawned from a hit never hits the same surface again at any scale, and naive starts do")
 {

@@ -13,7 +13,10 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "config.hpp"
 
@@ -28,16 +31,43 @@ constexpr real gamma_n(int n)
     return (real(n) * unit_roundoff) / (1 - real(n) * unit_roundoff);
 }
 
-/// The next representable value above x (towards +inf).
-inline real next_up(real x)
+namespace detail {
+
+/// x's bit pattern moved by one (PBR 3rd ed., sec. 3.9.4, NextFloatUp): for
+/// IEEE values of one sign, consecutive patterns are consecutive values.
+inline real step_bits(real x, bool increase)
 {
-    return std::nextafter(x, std::numeric_limits<real>::infinity());
+    using bits = std::conditional_t<sizeof(real) == sizeof(std::uint32_t), std::uint32_t, std::uint64_t>;
+    bits b;
+    std::memcpy(&b, &x, sizeof b);
+    b = increase ? b + 1 : b - 1;
+    std::memcpy(&x, &b, sizeof b);
+    return x;
 }
 
-/// The next representable value below x (towards -inf).
+} // namespace detail
+
+/// The next representable value above x (towards +inf): std::nextafter(x,
+/// +inf), bit for bit (-0 and +0 both go to the smallest subnormal, +inf and
+/// NaN stay), without its call into the maths library: a spawned ray takes up
+/// to six (spawn.hpp).
+inline real next_up(real x)
+{
+    if (std::isnan(x) || x == std::numeric_limits<real>::infinity())
+        return x;
+    if (x == 0)
+        return std::numeric_limits<real>::denorm_min();
+    return detail::step_bits(x, x > 0);
+}
+
+/// The next representable value below x (towards -inf), as std::nextafter(x, -inf).
 inline real next_down(real x)
 {
-    return std::nextafter(x, -std::numeric_limits<real>::infinity());
+    if (std::isnan(x) || x == -std::numeric_limits<real>::infinity())
+        return x;
+    if (x == 0)
+        return -std::numeric_limits<real>::denorm_min();
+    return detail::step_bits(x, x < 0);
 }
 
 } // namespace rt
