@@ -21,32 +21,14 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <type_traits>
 
+#include "rounding.hpp"
 #include "vec.hpp"
 
 namespace rt {
 
-namespace detail {
-
-/// The float or double x moved by |ulps| units in the last place towards +inf
-/// for positive ulps (towards -inf for negative ones), by integer arithmetic on
-/// its bits. (x must not be zero: near zero offset_ray_origin adds instead.)
-template <class Float>
-Float add_ulps(Float x, std::int64_t ulps)
-{
-    using Bits = std::conditional_t<sizeof(Float) == 4, std::int32_t, std::int64_t>;
-    Bits bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    // the bit pattern of a float grows with its magnitude, on either side of zero
-    bits = Bits(bits + (x < 0 ? -ulps : ulps));
-    Float moved;
-    std::memcpy(&moved, &bits, sizeof moved);
-    return moved;
-}
-
-} // namespace detail
+// detail::add_ulps, the move by units in the last place, is in rounding.hpp
+// (next_up and next_down use it too).
 
 /// The robust origin of a ray leaving the surface at p on the side of the unit
 /// geometric normal n (Ray Tracing Gems ch. 6). To leave on the other side,

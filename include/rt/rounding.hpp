@@ -33,31 +33,37 @@ constexpr real gamma_n(int n)
 
 namespace detail {
 
-/// x's bit pattern moved by one (PBR 3rd ed., sec. 3.9.4, NextFloatUp): for
-/// IEEE values of one sign, consecutive patterns are consecutive values.
-inline real step_bits(real x, bool increase)
+/// The float or double x moved by |ulps| units in the last place towards +inf
+/// for positive ulps (towards -inf for negative ones), by integer arithmetic on
+/// its bits. (x must not be zero: offset_ray_origin adds near zero instead, and
+/// next_up and next_down treat zero apart.)
+template <class Float>
+Float add_ulps(Float x, std::int64_t ulps)
 {
-    using bits = std::conditional_t<sizeof(real) == sizeof(std::uint32_t), std::uint32_t, std::uint64_t>;
-    bits b;
-    std::memcpy(&b, &x, sizeof b);
-    b = increase ? b + 1 : b - 1;
-    std::memcpy(&x, &b, sizeof b);
-    return x;
+    using Bits = std::conditional_t<sizeof(Float) == 4, std::int32_t, std::int64_t>;
+    Bits bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    // the bit pattern of a float grows with its magnitude, on either side of zero
+    bits = Bits(bits + (x < 0 ? -ulps : ulps));
+    Float moved;
+    std::memcpy(&moved, &bits, sizeof moved);
+    return moved;
 }
 
 } // namespace detail
 
 /// The next representable value above x (towards +inf): std::nextafter(x,
 /// +inf), bit for bit (-0 and +0 both go to the smallest subnormal, +inf and
-/// NaN stay), without its call into the maths library: a spawned ray takes up
-/// to six (spawn.hpp).
+/// NaN stay), one step of the bit pattern (PBR 3rd ed., sec. 3.9.4) without
+/// std::nextafter's call into the maths library: a spawned ray takes up to six
+/// (spawn.hpp).
 inline real next_up(real x)
 {
     if (std::isnan(x) || x == std::numeric_limits<real>::infinity())
         return x;
     if (x == 0)
         return std::numeric_limits<real>::denorm_min();
-    return detail::step_bits(x, x > 0);
+    return detail::add_ulps(x, 1);
 }
 
 /// The next representable value below x (towards -inf), as std::nextafter(x, -inf).
@@ -67,7 +73,7 @@ inline real next_down(real x)
         return x;
     if (x == 0)
         return -std::numeric_limits<real>::denorm_min();
-    return detail::step_bits(x, x < 0);
+    return detail::add_ulps(x, -1);
 }
 
 } // namespace rt

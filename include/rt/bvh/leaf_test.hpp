@@ -23,11 +23,9 @@
 namespace rt {
 namespace detail {
 
-/// The ray as the leaf test reads it: the watertight test's permutation as
-/// rows of triangle_block::v (corner i's kx coordinate is row 3 i + kx) and,
-/// with SSE, the origin and the shear in all four lanes.
+/// The ray as the SIMD leaf test reads it, besides the watertight ray itself:
+/// the origin and the shear in all four lanes.
 struct leaf_ray {
-    int kx, ky, kz;
 #if RT_BVH_SSE
     __m128 px, py, pz;  ///< p_kx, p_ky, p_kz
     __m128 Sx, Sy, Sz;
@@ -37,9 +35,6 @@ struct leaf_ray {
 inline leaf_ray make_leaf_ray(const watertight_ray& w)
 {
     leaf_ray r;
-    r.kx = w.kx;
-    r.ky = w.ky;
-    r.kz = w.kz;
 #if RT_BVH_SSE
     r.px = _mm_set1_ps(float(w.p[w.kx]));
     r.py = _mm_set1_ps(float(w.p[w.ky]));
@@ -47,6 +42,8 @@ inline leaf_ray make_leaf_ray(const watertight_ray& w)
     r.Sx = _mm_set1_ps(float(w.Sx));
     r.Sy = _mm_set1_ps(float(w.Sy));
     r.Sz = _mm_set1_ps(float(w.Sz));
+#else
+    (void)w; // the scalar test reads the watertight ray alone
 #endif
     return r;
 }
@@ -145,10 +142,10 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
 {
     const __m128 zero = _mm_setzero_ps();
     // corners translated to the origin and permuted: x (kx), y (ky), z (kz);
-    // corner i's rows are 3 i + kx, 3 i + ky, 3 i + kz (three offsets, not nine)
-    const float* x = b.v[r.kx];
-    const float* y = b.v[r.ky];
-    const float* z = b.v[r.kz];
+    // corner i's rows of triangle_block::v are 3 i + kx, 3 i + ky, 3 i + kz
+    const float* x = b.v[w.kx];
+    const float* y = b.v[w.ky];
+    const float* z = b.v[w.kz];
     const __m128 ax = _mm_sub_ps(_mm_load_ps(x), r.px);
     const __m128 bx = _mm_sub_ps(_mm_load_ps(x + 12), r.px);
     const __m128 cx = _mm_sub_ps(_mm_load_ps(x + 24), r.px);

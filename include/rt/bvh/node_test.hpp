@@ -35,15 +35,21 @@ constexpr bool bvh_uses_sse = false;
 struct node_ray {
     real origin[3];
     real inv_dir[3];
-    int near_row[3];  ///< per axis, the row of bvh_node::bounds met first: 2 k (lo) or 2 k + 1 (hi)
-    int far_row[3];
-    std::size_t near_offset[3];  ///< the same rows as byte offsets into a node (no index arithmetic per visit)
+    /// Per axis, the row of bvh_node::bounds met first (2 k, lo, or 2 k + 1,
+    /// hi) and the other, as byte offsets into a node: no index arithmetic per visit.
+    std::size_t near_offset[3];
     std::size_t far_offset[3];
 #if RT_BVH_SSE
     __m128 origin4[3];   ///< the origin's k-th coordinate in all four lanes
     __m128 inv_dir4[3];  ///< 1/d_k in all four lanes
 #endif
 };
+
+/// The row of `node`'s bounds at a byte offset of node_ray.
+inline const real* bounds_row(const bvh_node& node, std::size_t offset)
+{
+    return reinterpret_cast<const real*>(reinterpret_cast<const char*>(node.bounds) + offset);
+}
 
 inline node_ray make_node_ray(const ray& r)
 {
@@ -52,10 +58,8 @@ inline node_ray make_node_ray(const ray& r)
     for (int k = 0; k < 3; ++k) {
         n.origin[k] = b.origin[k];
         n.inv_dir[k] = b.inv_dir[k];
-        n.near_row[k] = 2 * k + b.negative[k];
-        n.far_row[k] = 2 * k + 1 - b.negative[k];
-        n.near_offset[k] = std::size_t(n.near_row[k]) * sizeof(bvh_node::bounds[0]);
-        n.far_offset[k] = std::size_t(n.far_row[k]) * sizeof(bvh_node::bounds[0]);
+        n.near_offset[k] = std::size_t(2 * k + b.negative[k]) * sizeof(bvh_node::bounds[0]);
+        n.far_offset[k] = std::size_t(2 * k + 1 - b.negative[k]) * sizeof(bvh_node::bounds[0]);
 #if RT_BVH_SSE
         n.origin4[k] = _mm_set1_ps(float(b.origin[k]));
         n.inv_dir4[k] = _mm_set1_ps(float(b.inv_dir[k]));
@@ -73,8 +77,8 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
     for (int c = 0; c < 4; ++c) {
         real t0 = tmin, t1 = tmax;
         for (int k = 0; k < 3; ++k) {
-            const real t_near = (node.bounds[r.near_row[k]][c] - r.origin[k]) * r.inv_dir[k];
-            const real t_far = (node.bounds[r.far_row[k]][c] - r.origin[k]) * r.inv_dir[k];
+            const real t_near = (bounds_row(node, r.near_offset[k])[c] - r.origin[k]) * r.inv_dir[k];
+            const real t_far = (bounds_row(node, r.far_offset[k])[c] - r.origin[k]) * r.inv_dir[k];
             t0 = t_near > t0 ? t_near : t0; // a NaN keeps the interval (see hit_box)
             t1 = t_far < t1 ? t_far : t1;
         }
@@ -91,8 +95,7 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
 inline int intersect_children_sse(const bvh_node& node, const node_ray& r, float tmin, float tmax, float tnear[4])
 {
     // the three axes written out: the compiler keeps every value in a register
-    const char* base = reinterpret_cast<const char*>(node.bounds);
-    auto row = [base](std::size_t offset) { return _mm_load_ps(reinterpret_cast<const float*>(base + offset)); };
+    auto row = [&node](std::size_t offset) { return _mm_load_ps(bounds_row(node, offset)); };
     const __m128 near_x = _mm_mul_ps(_mm_sub_ps(row(r.near_offset[0]), r.origin4[0]), r.inv_dir4[0]);
     const __m128 far_x = _mm_mul_ps(_mm_sub_ps(row(r.far_offset[0]), r.origin4[0]), r.inv_dir4[0]);
     const __m128 near_y = _mm_mul_ps(_mm_sub_ps(row(r.near_offset[1]), r.origin4[1]), r.inv_dir4[1]);
