@@ -334,10 +334,19 @@ private:
                     for (int lane = 0; mask != 0; ++lane, mask >>= 1) {
                         if (!(mask & 1))
                             continue;
-                        const primitive_hit h{hits[lane].t, hits[lane].b0, hits[lane].b1, hits[lane].b2,
-                                              block->id[lane], &block->v[0][lane], 4};
-                        if (!found || replaces(h, best)) {
-                            best = h;
+                        // best written field by field: a primitive_hit built
+                        // and copied whole was stored in parts and reloaded
+                        // at once, a store-forwarding stall
+                        const triangle_hit& h = hits[lane];
+                        const std::uint32_t id = block->id[lane];
+                        if (!found || h.t < best.t || (h.t == best.t && id > best.id)) { // replaces()
+                            best.t = h.t;
+                            best.b0 = h.b0;
+                            best.b1 = h.b1;
+                            best.b2 = h.b2;
+                            best.id = id;
+                            best.corners = &block->v[0][lane];
+                            best.stride = 4;
                             found = true;
                             closest_t = h.t;
                         }

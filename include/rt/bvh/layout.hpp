@@ -32,8 +32,9 @@ namespace rt {
 /// their ids (packed_primitive::id). A sphere's lane holds its centre and
 /// radius in rows 0 to 3, NaN in the others, and sphere_flag in its id, the
 /// sign bit of the lane (one movemask finds the spheres of a block). A lane
-/// that a leaf does not fill is NaN with id 0. NaN corners give a NaN t, which
-/// the range test refuses, so the triangle test needs no mask of its own.
+/// that a leaf does not fill is NaN with id 0. NaN corners give NaN edge
+/// functions, which the sign test refuses (and a NaN t, which the range test
+/// refuses), so the triangle test needs no mask of its own.
 /// 160 bytes in float, the size of four packed_primitive.
 struct alignas(32) triangle_block {
     real v[9][4];

@@ -162,13 +162,18 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
     const __m128 By = _mm_sub_ps(by, _mm_mul_ps(r.Sy, bz));
     const __m128 Cx = _mm_sub_ps(cx, _mm_mul_ps(r.Sx, cz));
     const __m128 Cy = _mm_sub_ps(cy, _mm_mul_ps(r.Sy, cz));
-    // edge functions, and the sign test: a miss when some are < 0 and some > 0
+    // edge functions, and the sign test: a miss when some are < 0 and some >
+    // 0. A NaN counts as both (cmpnge, cmpnle), so an unused or sphere lane
+    // (NaN corners) fails here; it would fail the range test anyway (its t is
+    // NaN), but a block whose only other lanes miss now ends here.
     const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx), Cy2 = widen(Cy);
     const __m128 U = edge_function4(Cx2, By2, Cy2, Bx2);
     const __m128 V = edge_function4(Ax2, Cy2, Ay2, Cx2);
     const __m128 W = edge_function4(Bx2, Ay2, By2, Ax2);
-    const __m128 negative = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(U, zero), _mm_cmplt_ps(V, zero)), _mm_cmplt_ps(W, zero));
-    const __m128 positive = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(U, zero), _mm_cmpgt_ps(V, zero)), _mm_cmpgt_ps(W, zero));
+    const __m128 negative =
+        _mm_or_ps(_mm_or_ps(_mm_cmpnge_ps(U, zero), _mm_cmpnge_ps(V, zero)), _mm_cmpnge_ps(W, zero));
+    const __m128 positive =
+        _mm_or_ps(_mm_or_ps(_mm_cmpnle_ps(U, zero), _mm_cmpnle_ps(V, zero)), _mm_cmpnle_ps(W, zero));
     int mask = ~_mm_movemask_ps(_mm_and_ps(negative, positive)) & 15;
     if (mask == 0)
         return 0;
