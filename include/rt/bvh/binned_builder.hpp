@@ -91,20 +91,20 @@ public:
         };
         if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
             return hand_over();
-        // a node where every reference is narrower than a slice on every
-        // axis gains nothing from cutting them (a fine mesh, or the lower
-        // part of the tree): build() does it in place and on threads
+        // Cuts across the box's longest axis only (all three cost 3x and traced
+        // slower: docs/performance.md, exp. 6). No reference wider than a slice
+        // there (a fine mesh, the lower tree): build() works in place, on threads.
+        const vec3 e = box.extent();
+        const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
         aabb centroids;
-        bool wide[3] = {false, false, false};
-        const vec3 slice_width = box.extent() / real(slice_count_);
+        bool wide_references = false;
         for (const build_item& r : refs) {
             centroids.grow(r.centroid);
-            const vec3 e = r.box.extent();
-            for (int axis = 0; axis < 3; ++axis)
-                wide[axis] = wide[axis] || e[axis] > slice_width[axis];
+            wide_references = wide_references || r.box.hi[axis] - r.box.lo[axis] > e[axis] / real(slice_count_);
         }
-        if (!wide[0] && !wide[1] && !wide[2])
+        if (!wide_references)
             return hand_over(nullptr, &centroids);
+        const bool wide[3] = {axis == 0, axis == 1, axis == 2};
         const split object = find_split(refs.data(), n, centroids);
         if (object.axis < 0)
             return hand_over(&object, &centroids);

@@ -100,7 +100,8 @@ struct spatial_split {
 /// several slices adds the box of its part in each slice and counts as
 /// entering its first slice and leaving its last. Axes where no reference is
 /// wider than a slice (wide[axis] false) are skipped: there a plane cuts next
-/// to nothing, and an object split does as well. Bins filled from two parts
+/// to nothing, and an object split does as well (binary_builder::build_spatial
+/// asks for one axis, the node's longest). Bins filled from two parts
 /// of the references and merged are the bins of the whole, whatever the
 /// order (a box grows by min and max, counts add), so two threads can fill
 /// them at the top of the tree.
