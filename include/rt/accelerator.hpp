@@ -199,8 +199,12 @@ private:
             // the corners as packed (the same numbers as in the shape)
             const real* v = h.corners;
             const int k = h.stride;
-            fill_triangle_record(vec3(v[0], v[k], v[2 * k]), vec3(v[3 * k], v[4 * k], v[5 * k]),
-                                 vec3(v[6 * k], v[7 * k], v[8 * k]), r, triangle_hit{h.t, h.b0, h.b1, h.b2}, rec);
+            const vec3 a(v[0], v[k], v[2 * k]), b(v[3 * k], v[4 * k], v[5 * k]), c(v[6 * k], v[7 * k], v[8 * k]);
+            const triangle_hit hit{h.t, h.b0, h.b1, h.b2};
+            if (h.normal != nullptr) // stored by the BVH: triangle_normal(a, b, c)
+                fill_triangle_record(a, b, c, *h.normal, r, hit, rec);
+            else
+                fill_triangle_record(a, b, c, r, hit, rec);
             if (const triangle* tri = std::get_if<triangle>(&item))
                 rec.material = tri->material;
             else

@@ -98,7 +98,10 @@ inline vec3 triangle_normal(const vec3& a, const vec3& b, const vec3& c)
 ///    corners lie on one line has no normal (the loaders refuse it); if one
 ///    is hit all the same, the normal is -d / |d|, never NaN;
 ///  - t, b1, b2, primitive 0. The material is left to the caller.
-inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, const ray& r,
+/// `normal` is triangle_normal(a, b, c), given by a caller that stored it (a
+/// BVH computes it once per triangle when it is built: the double square root
+/// and division were most of a record's cost).
+inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, const vec3& normal, const ray& r,
                                  const triangle_hit& h, hit_record& rec)
 {
     rec.t = h.t;
@@ -106,7 +109,7 @@ inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, co
     // |x| as std::fabs, one instruction (glm::abs compares and selects)
     auto abs3 = [](const vec3& v) { return vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)); };
     rec.point_error = gamma_n(7) * (abs3(h.b0 * a) + abs3(h.b1 * b) + abs3(h.b2 * c));
-    vec3 n = triangle_normal(a, b, c);
+    vec3 n = normal;
     if (n == vec3(0))
         n = -glm::normalize(r.direction);
     rec.front_face = glm::dot(r.direction, n) < 0;
@@ -117,6 +120,13 @@ inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, co
     rec.b1 = h.b1;
     rec.b2 = h.b2;
     rec.primitive = 0;
+}
+
+/// The same, with the normal computed here.
+inline void fill_triangle_record(const vec3& a, const vec3& b, const vec3& c, const ray& r,
+                                 const triangle_hit& h, hit_record& rec)
+{
+    fill_triangle_record(a, b, c, triangle_normal(a, b, c), r, h, rec);
 }
 
 } // namespace rt

@@ -347,6 +347,7 @@ private:
                             best.id = id;
                             best.corners = &block->v[0][lane];
                             best.stride = 4;
+                            best.normal = &block->n[lane];
                             found = true;
                             closest_t = h.t;
                         }

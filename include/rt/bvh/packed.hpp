@@ -72,13 +72,16 @@ inline aabb packed_bounds(const packed_primitive& p)
 /// triangle, where its corners were read: coordinate j (a.x a.y a.z b.x ...)
 /// at corners[j * stride] (a packed_primitive: stride 1; a lane of a
 /// triangle_block: stride 4). They are in cache: completing the hit record
-/// reads them there rather than through the mesh's index arrays.
+/// reads them there rather than through the mesh's index arrays. A BVH also
+/// gives the triangle's normal, triangle_normal of those corners computed
+/// when it was built (else normal is null).
 struct primitive_hit {
     real t = 0;
     real b0 = 0, b1 = 0, b2 = 0;
     std::uint32_t id = 0;
     const real* corners = nullptr;
     int stride = 1;
+    const vec3* normal = nullptr;
 };
 
 /// The one rule for "closest": a smaller t wins; at an equal t the later
