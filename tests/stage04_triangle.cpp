@@ -82,11 +82,15 @@ TEST_CASE("Moller-Trumbore and the watertight test find t and the barycentrics w
         CHECK(rec.front_face);
         CHECK(near(rec.geometric_normal, vec3(0, 0, 1)));
         CHECK(near(rec.normal, vec3(0, 0, 1)));
-        CHECK(rec.material == 4);
+        CHECK_MESSAGE(rec.material == 4, "expected the triangle's material in the record (fill_triangle_record "
+                                         "leaves rec.material to the caller: set it to tri.material), found "
+                                             << rec.material);
 
         // from below: two-sided, the back face, normals turned towards the ray;
         // a direction of length 2 halves t
-        REQUIRE(m.hit(tri, rt::ray{{0.25f, 0.5f, -3}, {0, 0, 2}}, 0, 10, rec));
+        REQUIRE_MESSAGE(m.hit(tri, rt::ray{{0.25f, 0.5f, -3}, {0, 0, 2}}, 0, 10, rec),
+                        "expected a hit on the back face (a ray from below, det < 0): the test is two-sided, "
+                        "only det == 0 misses; found no hit");
         CHECK(near(rec.t, real(1.5)));
         CHECK_FALSE(rec.front_face);
         CHECK(near(rec.geometric_normal, vec3(0, 0, -1)));
