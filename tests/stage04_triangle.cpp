@@ -74,14 +74,16 @@ TEST_CASE("Moller-Trumbore and the watertight test find t and the barycentrics w
         const std::string method_name = m.name;
         CAPTURE(method_name);
         rt::hit_record rec;
-        REQUIRE(m.hit(tri, rt::ray{{0.25f, 0.5f, 2}, {0, 0, -1}}, 0, 10, rec));
-        CHECK(near(rec.t, 2));
-        CHECK(near(rec.b1, real(0.25)));
-        CHECK(near(rec.b2, real(0.5)));
-        CHECK(near(rec.point, vec3(0.25f, 0.5f, 0)));
-        CHECK(rec.front_face);
-        CHECK(near(rec.geometric_normal, vec3(0, 0, 1)));
-        CHECK(near(rec.normal, vec3(0, 0, 1)));
+        REQUIRE_MESSAGE(m.hit(tri, rt::ray{{0.25f, 0.5f, 2}, {0, 0, -1}}, 0, 10, rec),
+                        "expected a hit at (0.25, 0.5, 0), t = 2, from above; found no hit");
+        CHECK_MESSAGE(near(rec.t, 2), "expected t = 2 (the origin is 2 above the plane, |d| = 1), found " << rec.t);
+        CHECK_MESSAGE(near(rec.b1, real(0.25)), "expected b1 = u = 0.25 (the weight of corner b), found " << rec.b1);
+        CHECK_MESSAGE(near(rec.b2, real(0.5)), "expected b2 = v = 0.5 (the weight of corner c), found " << rec.b2);
+        CHECK_MESSAGE(near(rec.point, vec3(0.25f, 0.5f, 0)), "expected the point (0.25, 0.5, 0), found " << rec.point);
+        CHECK_MESSAGE(rec.front_face, "expected front_face: the corners turn counter-clockwise seen from the ray");
+        CHECK_MESSAGE(near(rec.geometric_normal, vec3(0, 0, 1)),
+                      "expected the geometric normal (0, 0, 1), found " << rec.geometric_normal);
+        CHECK_MESSAGE(near(rec.normal, vec3(0, 0, 1)), "expected the normal (0, 0, 1), found " << rec.normal);
         CHECK_MESSAGE(rec.material == 4, "expected the triangle's material in the record (fill_triangle_record "
                                          "leaves rec.material to the caller: set it to tri.material), found "
                                              << rec.material);
@@ -91,35 +93,48 @@ TEST_CASE("Moller-Trumbore and the watertight test find t and the barycentrics w
         REQUIRE_MESSAGE(m.hit(tri, rt::ray{{0.25f, 0.5f, -3}, {0, 0, 2}}, 0, 10, rec),
                         "expected a hit on the back face (a ray from below, det < 0): the test is two-sided, "
                         "only det == 0 misses; found no hit");
-        CHECK(near(rec.t, real(1.5)));
-        CHECK_FALSE(rec.front_face);
-        CHECK(near(rec.geometric_normal, vec3(0, 0, -1)));
+        CHECK_MESSAGE(near(rec.t, real(1.5)),
+                      "expected t = 1.5 (3 below the plane, |d| = 2: t counts lengths of d), found " << rec.t);
+        CHECK_MESSAGE(!rec.front_face, "expected the back face (front_face false) for a ray from below");
+        CHECK_MESSAGE(near(rec.geometric_normal, vec3(0, 0, -1)),
+                      "expected the normal turned towards the ray, (0, 0, -1), found " << rec.geometric_normal);
 
         // misses: beyond each edge, parallel in the plane, behind the origin
-        CHECK_FALSE(m.hit(tri, rt::ray{{0.6f, 0.6f, 1}, {0, 0, -1}}, 0, 10, rec));  // u + v > 1
-        CHECK_FALSE(m.hit(tri, rt::ray{{-0.1f, 0.5f, 1}, {0, 0, -1}}, 0, 10, rec)); // x < 0
-        CHECK_FALSE(m.hit(tri, rt::ray{{0.5f, -0.1f, 1}, {0, 0, -1}}, 0, 10, rec)); // y < 0
-        CHECK_FALSE(m.hit(tri, rt::ray{{-1, 0.25f, 0}, {1, 0, 0}}, 0, 10, rec));    // in the plane
-        CHECK_FALSE(m.hit(tri, rt::ray{{0.25f, 0.25f, -1}, {0, 0, -1}}, 0, 10, rec)); // t = -1
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.6f, 0.6f, 1}, {0, 0, -1}}, 0, 10, rec),
+                      "expected a miss beyond the edge b-c (u + v = 1.2 > 1), found a hit");
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{-0.1f, 0.5f, 1}, {0, 0, -1}}, 0, 10, rec),
+                      "expected a miss beyond the edge a-c (u = -0.1 < 0), found a hit");
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.5f, -0.1f, 1}, {0, 0, -1}}, 0, 10, rec),
+                      "expected a miss beyond the edge a-b (v = -0.1 < 0), found a hit");
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{-1, 0.25f, 0}, {1, 0, 0}}, 0, 10, rec),
+                      "expected a miss for a ray in the triangle's plane (det = 0), found a hit");
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.25f, 0.25f, -1}, {0, 0, -1}}, 0, 10, rec),
+                      "expected a miss behind the origin (t = -1 < tmin = 0), found a hit");
 
         // the interval [tmin, tmax] is closed
-        CHECK_FALSE(m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, 0, real(1.5), rec));
-        CHECK_FALSE(m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, real(2.5), 10, rec));
-        CHECK(m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, 0, 2, rec));
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, 0, real(1.5), rec),
+                      "expected a miss: t = 2 is beyond tmax = 1.5; found a hit");
+        CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, real(2.5), 10, rec),
+                      "expected a miss: t = 2 is before tmin = 2.5; found a hit");
+        CHECK_MESSAGE(m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, 0, 2, rec),
+                      "expected a hit at t = 2 = tmax: the interval [tmin, tmax] is closed; found a miss");
 
         // a tilted triangle: a = (1,0,0), b = (0,2,0), c = (0,0,3) spans the plane
         // x + y/2 + z/3 = 1; the ray from 0 along (1,1,1) meets it at t = 6/11,
         // where x = b0, y = 2 b1, z = 3 b2: b0 = 6/11, b1 = 3/11, b2 = 2/11.
         const rt::triangle tilted{{1, 0, 0}, {0, 2, 0}, {0, 0, 3}, -1};
-        REQUIRE(m.hit(tilted, rt::ray{{0, 0, 0}, {1, 1, 1}}, 0, 10, rec));
-        CHECK(near(rec.t, real(6) / 11));
-        CHECK(near(rec.b1, real(3) / 11));
-        CHECK(near(rec.b2, real(2) / 11));
-        CHECK(near(rec.point, vec3(real(6) / 11)));
+        REQUIRE_MESSAGE(m.hit(tilted, rt::ray{{0, 0, 0}, {1, 1, 1}}, 0, 10, rec),
+                        "expected the ray from the origin along (1, 1, 1) to hit the tilted triangle at t = 6/11; "
+                        "found no hit");
+        CHECK_MESSAGE(near(rec.t, real(6) / 11), "expected t = 6/11 = 0.5454..., found " << rec.t);
+        CHECK_MESSAGE(near(rec.b1, real(3) / 11), "expected b1 = 3/11 = 0.2727..., found " << rec.b1);
+        CHECK_MESSAGE(near(rec.b2, real(2) / 11), "expected b2 = 2/11 = 0.1818..., found " << rec.b2);
+        CHECK_MESSAGE(near(rec.point, vec3(real(6) / 11)), "expected the point (6/11, 6/11, 6/11), found " << rec.point);
         // (b - a) x (c - a) = (6, 3, 2) points away from the origin: the ray
         // from the origin meets the back
-        CHECK_FALSE(rec.front_face);
-        CHECK(near(rec.geometric_normal, -vec3(6, 3, 2) / real(7)));
+        CHECK_MESSAGE(!rec.front_face, "expected the back face: (b - a) x (c - a) = (6, 3, 2) points away from the ray");
+        CHECK_MESSAGE(near(rec.geometric_normal, -vec3(6, 3, 2) / real(7)),
+                      "expected the normal -(6, 3, 2) / 7, turned towards the ray, found " << rec.geometric_normal);
     }
 }
 
