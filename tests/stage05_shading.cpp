@@ -10,6 +10,7 @@
 #include "shading_scene.hpp"
 
 #include <cmath>
+#include <sstream>
 
 #include <rt/hit_record.hpp>
 #include <rt/scene.hpp>
@@ -48,10 +49,22 @@ TEST_CASE("blinn_phong where h = n: the highlight is ks I exactly, so h = (v + l
     const rt::vec3 v(0, 0, 1), l = glm::normalize(rt::vec3(1, 0, 1)), n = glm::normalize(v + l);
     const double nl = double(glm::dot(n, l)); // cos 22.5 degrees
     const rt::color L = rt::blinn_phong(m, n, v, l, I);
-    INFO("n = h: n.h = 1, so the specular term is ks I = (0.4, 0.36, 0.32); with h = v + l unnormalised n.h = |v + l| = "
-         << double(glm::length(v + l)) << " and the highlight is " << std::pow(double(glm::length(v + l)), 20)
-         << " times too bright: normalise the half vector");
-    check_color(L, 0.7 * 1.0 * nl + 0.4 * 1.0, 0.5 * 0.9 * nl + 0.4 * 0.9, 0.3 * 0.8 * nl + 0.4 * 0.8, 1e-5);
+    const double red = 0.7 * 1.0 * nl + 0.4 * 1.0;
+    // a hint for the two likeliest causes, told apart by the red channel found
+    const double unnormalised = std::pow(double(glm::length(v + l)), 20);
+    std::ostringstream hint;
+    if (double(L.r) > 2 * red)
+        hint << "; with h = v + l unnormalised n.h = |v + l| = " << double(glm::length(v + l))
+             << " and the highlight is " << unnormalised << " times too bright: normalise the half vector";
+    else if (double(L.r) < 0.5 * red)
+        hint << "; found (almost) no light: l is the unit direction from the point towards the light, and here "
+                "n.l = cos 22.5 degrees > 0";
+    else if (std::abs(double(L.r) - red - 0.2) < 1e-3)
+        hint << "; found ka I = (0.2, 0.09, 0.04) more: blinn_phong has no ambient term (the caller adds ka Ia "
+                "once)";
+    INFO("n = h: n.h = 1, so the specular term is ks I = (0.4, 0.36, 0.32), and the diffuse term kd I n.l"
+         << hint.str());
+    check_color(L, red, 0.5 * 0.9 * nl + 0.4 * 0.9, 0.3 * 0.8 * nl + 0.4 * 0.8, 1e-5);
 }
 
 TEST_CASE("one sphere, one directional light, orthographic view: pixels equal the formula by hand")
@@ -73,10 +86,9 @@ TEST_CASE("one sphere, one directional light, orthographic view: pixels equal th
             double expected[3];
             for (int c = 0; c < 3; ++c)
                 expected[c] = ka[c] * Ia + kd[c] * I[c] * nz + ks * I[c] * std::pow(nz, 20);
-            CAPTURE(u);
-            CAPTURE(v);
-            INFO("the sphere point under (u, v) has n = (u, v, nz), nz = " << nz << ", and v = l = h = +z, so "
-                 "L = ka Ia + kd I nz + ks I nz^20 (FCG 4th ed., sec. 4.5.2)");
+            INFO("the pixel centre (u, v) = (" << u << ", " << v << ") of the window: the sphere point under it has "
+                 "normal n = (u, v, nz), nz = " << nz << "; the viewer and the light are along +z (v = l = h = +z), "
+                 "so L = ka Ia + kd I nz + ks I nz^20 (FCG 4th ed., sec. 4.5.2)");
             if (!check_color(shade_at(s, u, v), expected[0], expected[1], expected[2], 1e-4))
                 return; // one pixel shows the cause; the other 51 would repeat it
         }
@@ -114,6 +126,9 @@ TEST_CASE("each term alone: ambient only, a light switched off, a light behind t
         s.ambient = rt::color(0.0f);
         // at the centre pixel n = +z; l = (sin 60, 0, cos 60): n.l = 0.5
         s.lights[0].direction = -rt::vec3(std::sqrt(rt::real(3)) / 2, 0, rt::real(0.5));
+        INFO("kd I n.l = (0.35, 0.225, 0.12) alone: found 0, l points the wrong way (l is the unit direction "
+             "from the point towards the light); found ka I more, blinn_phong added an ambient term (the caller "
+             "adds ka Ia once)");
         check_color(shade_at(s, 0, 0), 0.7 * 1.0 * 0.5, 0.5 * 0.9 * 0.5, 0.3 * 0.8 * 0.5);
     }
     SUBCASE("specular only: kd = 0, Ia = 0, the same side light: n.h = cos 30 degrees")
@@ -166,16 +181,29 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
     const rt::vec3 l = glm::normalize(rt::vec3(1, 1, 0));
     const rt::vec3 mirror = glm::normalize(rt::vec3(-1, 1, 0)); // v = the mirror direction of l: h = n
     check_color(rt::blinn_phong(m, n, mirror, l, rt::color(2.0f)), 1.0, 0.5, 2.0);
-    // away from the mirror direction the highlight falls: n.h < 1
-    const rt::color off = rt::blinn_phong(m, n, glm::normalize(rt::vec3(-1, 2, 0)), l, rt::color(2.0f));
-    INFO("away from the mirror direction n.h < 1, so the highlight ks I (n.h)^p falls below its peak ks I = 1 "
-         "(red) but stays positive, found " << off.r);
-    CHECK(off.r < 1.0f);
-    CHECK(off.r > 0.0f);
+    {
+        // away from the mirror direction the highlight falls: n.h < 1
+        const rt::color off = rt::blinn_phong(m, n, glm::normalize(rt::vec3(-1, 2, 0)), l, rt::color(2.0f));
+        INFO("away from the mirror direction n.h < 1, so the highlight ks I (n.h)^p falls below its peak ks I = 1 "
+             "(red) but stays positive, found " << off.r);
+        CHECK(off.r < 1.0f);
+        CHECK(off.r > 0.0f);
+    }
+    {
+        // n.h < 0 (a viewer far below the light's mirror direction) while n.l > 0:
+        // max(0, n.h)^p is 0; an odd p shows an unclamped cosine as a negative colour
+        m.p = 3;
+        const rt::vec3 light = glm::normalize(rt::vec3(1, rt::real(0.2), 0));
+        const rt::vec3 viewer = glm::normalize(rt::vec3(-1, -1, 0));
+        INFO("specular only, n.l = " << double(glm::dot(n, light)) << " > 0 but n.h = "
+             << double(glm::dot(n, glm::normalize(light + viewer))) << " < 0: clamp n.h at 0, max(0, n.h)^p");
+        check_color(rt::blinn_phong(m, n, viewer, light, rt::color(1.0f)), 0, 0, 0);
+    }
     // a light below the surface: n.l < 0 clamps the diffuse term to 0
     m.kd = rt::color(1.0f);
     m.ks = rt::color(0.0f);
     const rt::color below = rt::blinn_phong(m, n, n, glm::normalize(rt::vec3(1, -1, 0)), rt::color(1.0f));
+    INFO("diffuse only, a light 45 degrees below the surface: n.l = -0.707 clamps to 0, max(0, n.l)");
     check_color(below, 0, 0, 0);
 }
 

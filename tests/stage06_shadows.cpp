@@ -62,7 +62,9 @@ TEST_CASE("shadow acne across scales and offsets 1e-3 ... 1e5: neither acne nor 
                                    "(the shadow ray's start must move with the hit point's rounding error: spawn_ray_to)");
         CHECK_MESSAGE(r.shadow_points > 20, "expected more than 20 plane points inside the shadow");
         CHECK_MESSAGE(r.leaks == 0, "expected no leaks: " << r.leaks << " points inside the shadow saw the light "
-                                    "(the offset must not carry the shadow ray past the ball)");
+                                    "(the offset must not carry the shadow ray past the ball; and the segment must "
+                                    "reach the light: spawn_ray_to's t is 1 at the light, so bound any_hit by "
+                                    "1 - shadow_epsilon, not by the distance)");
     }
     MESSAGE(table); // the fixed epsilon's acne column: library_shadows_fixed_epsilon checks it, not this suite
 }
