@@ -1,6 +1,7 @@
 // Stage 06 - shadows: a shadow ray to each light, any hit before the light
 // (Fundamentals of Computer Graphics, 4th ed., sec. 4.7), started off the
-// surface robustly (Wachter and Binder, Ray Tracing Gems ch. 6).
+// surface past the hit point's rounding error (spawn_ray_to, PBR 3rd ed.,
+// sec. 3.9.5).
 //
 // The scenes: a sphere above a plane, with a point light on the plane's normal
 // through the sphere's centre, so that the shadow is an analytic disc

@@ -1,6 +1,7 @@
 // Stage 06 - shadows: Blinn-Phong with a shadow ray to each light
-// (include/rt/shadows.hpp), started with the robust offset or, for comparison,
-// the textbook's fixed epsilon.
+// (include/rt/shadows.hpp), started past the hit point's rounding error
+// (light_visible: spawn_ray_to) or, for comparison, with the textbook's fixed
+// epsilon.
 //
 //     stage06_shadows scenes/shadows.scene -o shadows.png [--offset robust|fixed] [--epsilon E]
 #include <iostream>
@@ -24,7 +25,8 @@ int main(int argc, char** argv)
             std::string("usage: stage06_shadows SCENE [-o OUTPUT] [--offset robust|fixed] [--epsilon E]\n"
                         "Renders SCENE with Blinn-Phong shading and shadow rays.\n"
                         "  -o OUTPUT        .png, .ppm or .pfm (default shadows.png)\n"
-                        "  --offset robust  start shadow rays with the offset of Ray Tracing Gems ch. 6 (default)\n"
+                        "  --offset robust  start shadow rays past the hit point's rounding error (spawn_ray_to,\n"
+                        "                   PBR 3rd ed. sec. 3.9.5: what light_visible does; default)\n"
                         "  --offset fixed   start them at the hit point and skip hits closer than E\n"
                         "  --epsilon E      the fixed epsilon (default 1e-4)\n") +
             stage::pixel_help;
