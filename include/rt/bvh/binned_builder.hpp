@@ -91,16 +91,16 @@ public:
         };
         if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
             return hand_over();
-        // Cuts across the box's longest axis only (all three cost 3x and traced
-        // slower: docs/performance.md, exp. 6). No reference wider than a slice
-        // there (a fine mesh, the lower tree): build() works in place, on threads.
+        // Cuts across the longest axis only (all three: 3x the cost, slower trees; docs/performance.md exp. 6).
+        // No reference wider than a slice there (a fine mesh, the lower tree): build() works in place.
         const vec3 e = box.extent();
         const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
+        const real slice_width = e[axis] / real(slice_count_);
         aabb centroids;
         bool wide_references = false;
         for (const build_item& r : refs) {
             centroids.grow(r.centroid);
-            wide_references = wide_references || r.box.hi[axis] - r.box.lo[axis] > e[axis] / real(slice_count_);
+            wide_references = wide_references || r.box.hi[axis] - r.box.lo[axis] > slice_width;
         }
         if (!wide_references)
             return hand_over(nullptr, &centroids);

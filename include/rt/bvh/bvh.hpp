@@ -339,7 +339,7 @@ private:
                         // at once, a store-forwarding stall
                         const triangle_hit& h = hits[lane];
                         const std::uint32_t id = block->id[lane];
-                        if (!found || h.t < best.t || (h.t == best.t && id > best.id)) { // replaces()
+                        if (!found || replaces(h.t, id, best)) {
                             best.t = h.t;
                             best.b0 = h.b0;
                             best.b1 = h.b1;

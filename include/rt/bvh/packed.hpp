@@ -89,9 +89,15 @@ struct primitive_hit {
 /// the closest t so far as tmax and so accepts a later hit at the same t.
 /// With it the flat list and the BVH return the same hit whatever the order
 /// of their tests.
+inline bool replaces(real t, std::uint32_t id, const primitive_hit& best)
+{
+    return t < best.t || (t == best.t && id > best.id);
+}
+
+/// The same rule for a whole candidate hit.
 inline bool replaces(const primitive_hit& candidate, const primitive_hit& best)
 {
-    return candidate.t < best.t || (candidate.t == best.t && candidate.id > best.id);
+    return replaces(candidate.t, candidate.id, best);
 }
 
 /// Intersects one packed primitive with the library's default methods: the
