@@ -79,15 +79,22 @@ public:
     /// pieces are references to the same primitive, so a ray gets the same
     /// hit whichever it meets. A node where the overlap is small, or whose
     /// subtree is small, is handed to build(), in place at the end of items_.
-    binary_child build_spatial(std::vector<build_item> refs, const aabb& box, int depth, real root_area,
-                               std::size_t& budget)
+    /// `known`: the references' bounds (side_bounds), if the caller has them.
+    binary_child build_spatial(std::vector<build_item> refs, int depth, real root_area, std::size_t& budget,
+                               const side_bounds* known = nullptr)
     {
         const std::size_t n = refs.size();
-        const auto hand_over = [&](const split* known = nullptr, const aabb* centroids = nullptr) {
+        const side_bounds bounds = known != nullptr ? *known : bounds_of(refs);
+        const aabb& box = bounds.box;
+        const aabb& centroids = bounds.centroids;
+        const auto hand_over = [&](const split* known = nullptr) {
             const std::size_t begin = items_.size();
-            items_.insert(items_.end(), refs.begin(), refs.end());
+            if (begin == 0 && depth == 0)
+                items_.swap(refs); // the whole tree without a cut (a fine mesh): no copy
+            else
+                items_.insert(items_.end(), refs.begin(), refs.end());
             std::vector<build_item>().swap(refs);
-            return build(begin, items_.size(), box, depth, known, centroids);
+            return build(begin, items_.size(), box, depth, known, &centroids);
         };
         if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
             return hand_over();
@@ -95,24 +102,17 @@ public:
         // No reference wider than a slice there (a fine mesh, the lower tree): build() works in place.
         const vec3 e = box.extent();
         const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
-        const real slice_width = e[axis] / real(slice_count_);
-        aabb centroids;
-        bool wide_references = false;
-        for (const build_item& r : refs) {
-            centroids.grow(r.centroid);
-            wide_references = wide_references || r.box.hi[axis] - r.box.lo[axis] > slice_width;
-        }
-        if (!wide_references)
-            return hand_over(nullptr, &centroids);
+        if (!(bounds.widest[axis] > e[axis] / real(slice_count_)))
+            return hand_over();
         const bool wide[3] = {axis == 0, axis == 1, axis == 2};
         const split object = find_split(refs.data(), n, centroids);
         if (object.axis < 0)
-            return hand_over(&object, &centroids);
+            return hand_over(&object);
         aabb overlap;
         overlap.lo = glm::max(object.left.lo, object.right.lo);
         overlap.hi = glm::min(object.left.hi, object.right.hi);
         if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
-            return hand_over(&object, &centroids);
+            return hand_over(&object);
         const spatial_split cut = find_spatial_split(refs, box, wide);
 
         sides parts;
@@ -151,7 +151,6 @@ public:
             });
         std::vector<build_item>().swap(refs);
         std::vector<build_item> left = std::move(parts.left), right = std::move(parts.right);
-        const aabb left_box = parts.left_box, right_box = parts.right_box;
 
         // the budget left is shared by the children in proportion to their
         // references, so the tree does not depend on which is built first
@@ -168,13 +167,11 @@ public:
             std::vector<build_item> right_items;
             build_in_parallel(
                 right_items, l, r,
-                [&] { return build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget); },
-                [&](binary_builder& b) {
-                    return b.build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
-                });
+                [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
+                [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
         } else {
-            l = build_spatial(std::move(left), left_box, depth + 1, root_area, left_budget);
-            r = build_spatial(std::move(right), right_box, depth + 1, root_area, right_budget);
+            l = build_spatial(std::move(left), depth + 1, root_area, left_budget);
+            r = build_spatial(std::move(right), depth + 1, root_area, right_budget);
         }
         nodes[index].side[0] = l;
         nodes[index].side[1] = r;
@@ -328,18 +325,22 @@ private:
     /// the boxes of each side.
     struct sides {
         std::vector<build_item> left, right;
-        aabb left_box, right_box;
-        void add_left(const build_item& r)
-        {
-            left.push_back(r);
-            left_box.grow(r.box);
-        }
-        void add_right(const build_item& r)
-        {
-            right.push_back(r);
-            right_box.grow(r.box);
-        }
+        void add_left(const build_item& r) { left.push_back(r); }
+        void add_right(const build_item& r) { right.push_back(r); }
     };
+
+    /// The bounds of a node's references, in one pass (side_gatherer, in
+    /// registers; gathered in to_sides, they were stored and reloaded around
+    /// every push_back).
+    static side_bounds bounds_of(const std::vector<build_item>& refs)
+    {
+        side_gatherer<true> on;
+        for (const build_item& r : refs)
+            on.take(r);
+        side_bounds out;
+        on.finish(out);
+        return out;
+    }
 
     /// to(r, sides) for every reference, in order; from
     /// parallel_binning_threshold references on, the two halves on two
@@ -364,8 +365,6 @@ private:
         tasks_->fork(second_half, [&] { run(0, n / 2, first); });
         first.left.insert(first.left.end(), second.left.begin(), second.left.end());
         first.right.insert(first.right.end(), second.right.begin(), second.right.end());
-        first.left_box.grow(second.left_box);
-        first.right_box.grow(second.right_box);
         return first;
     }
 

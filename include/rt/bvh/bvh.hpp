@@ -84,22 +84,23 @@ public:
         const int threads = detail::binary_builder::threads_for(count, used.threads);
 
         std::vector<detail::build_item> items(count);
-        aabb scene_box;
-        std::mutex scene_box_mutex; // and has_spheres_
+        detail::side_bounds all; // the items' box, centroids and widest extents, for build_spatial
+        std::mutex all_mutex;    // and has_spheres_
         detail::fill_in_parallel(count, threads, [&](std::size_t begin, std::size_t end) {
-            aabb part;
+            detail::side_bounds part;
             bool spheres = false;
             for (std::size_t i = begin; i < end; ++i) {
                 items[i].box = packed_bounds(prims[i]);
                 items[i].centroid = items[i].box.center();
                 items[i].index = std::uint32_t(i);
-                part.grow(items[i].box);
+                part.add(items[i]);
                 spheres = spheres || (prims[i].id & sphere_flag) != 0;
             }
-            const std::lock_guard<std::mutex> lock(scene_box_mutex);
-            scene_box.grow(part);
+            const std::lock_guard<std::mutex> lock(all_mutex);
+            all.merge(part);
             has_spheres_ = has_spheres_ || spheres;
         });
+        const aabb& scene_box = all.box;
         detail::build_tasks tasks;
         detail::binary_builder builder(items, used, threads > 1 ? &tasks : nullptr, prims);
         builder.nodes.reserve(count);
@@ -110,7 +111,7 @@ public:
                 std::vector<detail::build_item> refs;
                 refs.swap(items);
                 items.reserve(refs.size() + budget);
-                root = builder.build_spatial(std::move(refs), scene_box, 0, detail::half_area(scene_box), budget);
+                root = builder.build_spatial(std::move(refs), 0, detail::half_area(scene_box), budget, &all);
             } else {
                 root = builder.build(0, items.size(), scene_box, 0);
             }

@@ -245,9 +245,84 @@ private:
     std::vector<bin_box> right_box_;
 };
 
-/// What one side of a partition holds: its items' box and their centroids' box.
+/// What one side of a partition holds: its items' box, their centroids' box
+/// and, for build_spatial, their widest extent on each axis (a plane cuts a
+/// reference only on an axis where it is wider than a slice).
 struct side_bounds {
     aabb box, centroids;
+    vec3 widest{0};
+
+    /// One item (scalar: where the item was just written, an SSE load of it
+    /// would wait for the stores, as side_gatherer's would).
+    void add(const build_item& item)
+    {
+        box.grow(item.box);
+        centroids.grow(item.centroid);
+        widest = glm::max(widest, item.box.hi - item.box.lo);
+    }
+
+    void merge(const side_bounds& other)
+    {
+        box.grow(other.box);
+        centroids.grow(other.centroids);
+        widest = glm::max(widest, other.widest);
+    }
+};
+
+/// side_bounds gathered item by item while the items are moved to their
+/// side, in SSE registers where there are (lanes x, y, z, as sah_bins::add
+/// loads an item); `with_widest` false leaves widest alone.
+template <bool with_widest>
+class side_gatherer {
+public:
+#if RT_BVH_SSE
+    void take(const build_item& item)
+    {
+        const __m128 lo = _mm_loadu_ps(&item.box.lo.x), hi = _mm_loadu_ps(&item.box.hi.x);
+        const __m128 c = _mm_and_ps(_mm_loadu_ps(&item.centroid.x), xyz());
+        lo_ = _mm_min_ps(lo_, lo);
+        hi_ = _mm_max_ps(hi_, hi);
+        clo_ = _mm_min_ps(clo_, c);
+        chi_ = _mm_max_ps(chi_, c);
+        if (with_widest)
+            widest_ = _mm_max_ps(widest_, _mm_and_ps(_mm_sub_ps(hi, lo), xyz()));
+    }
+
+    /// Adds what was gathered to `out`.
+    void finish(side_bounds& out) const
+    {
+        side_bounds mine;
+        mine.box = aabb{lanes(lo_), lanes(hi_)};
+        mine.centroids = aabb{lanes(clo_), lanes(chi_)};
+        if (with_widest)
+            mine.widest = lanes(widest_);
+        out.merge(mine);
+    }
+
+private:
+    static __m128 xyz() { return _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)); }
+    static vec3 lanes(__m128 v)
+    {
+        alignas(16) float a[4];
+        _mm_store_ps(a, v);
+        return vec3(a[0], a[1], a[2]);
+    }
+    __m128 lo_ = _mm_set1_ps(std::numeric_limits<float>::infinity()), clo_ = lo_;
+    __m128 hi_ = _mm_set1_ps(-std::numeric_limits<float>::infinity()), chi_ = hi_;
+    __m128 widest_ = _mm_setzero_ps();
+#else
+    void take(const build_item& item)
+    {
+        mine_.box.grow(item.box);
+        mine_.centroids.grow(item.centroid);
+        if (with_widest)
+            mine_.widest = glm::max(mine_.widest, item.box.hi - item.box.lo);
+    }
+    void finish(side_bounds& out) const { out.merge(mine_); }
+
+private:
+    side_bounds mine_;
+#endif
 };
 
 /// Moves the items that s.left_of sends left before the others and returns
@@ -257,39 +332,8 @@ struct side_bounds {
 inline std::size_t partition_items(build_item* items, std::size_t n, const split& s, side_bounds& left,
                                    side_bounds& right)
 {
-#if RT_BVH_SSE
-    // the four boxes in registers (lanes x, y, z), as sah_bins::add loads an item
-    const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
-    __m128 lo[2], hi[2], clo[2], chi[2]; // [0] left, [1] right
-    for (int side = 0; side < 2; ++side) {
-        lo[side] = clo[side] = _mm_set1_ps(std::numeric_limits<float>::infinity());
-        hi[side] = chi[side] = _mm_set1_ps(-std::numeric_limits<float>::infinity());
-    }
-    const auto take = [&](const build_item& item, int side) {
-        const __m128 c = _mm_and_ps(_mm_loadu_ps(&item.centroid.x), xyz);
-        lo[side] = _mm_min_ps(lo[side], _mm_loadu_ps(&item.box.lo.x));
-        hi[side] = _mm_max_ps(hi[side], _mm_loadu_ps(&item.box.hi.x));
-        clo[side] = _mm_min_ps(clo[side], c);
-        chi[side] = _mm_max_ps(chi[side], c);
-    };
-    const auto finish = [&](int side, side_bounds& out) {
-        alignas(16) float a[4], b[4], ca[4], cb[4];
-        _mm_store_ps(a, lo[side]);
-        _mm_store_ps(b, hi[side]);
-        _mm_store_ps(ca, clo[side]);
-        _mm_store_ps(cb, chi[side]);
-        out.box.lo = glm::min(out.box.lo, vec3(a[0], a[1], a[2]));
-        out.box.hi = glm::max(out.box.hi, vec3(b[0], b[1], b[2]));
-        out.centroids.lo = glm::min(out.centroids.lo, vec3(ca[0], ca[1], ca[2]));
-        out.centroids.hi = glm::max(out.centroids.hi, vec3(cb[0], cb[1], cb[2]));
-    };
-#else
-    const auto take = [&](const build_item& item, int side) {
-        side_bounds& out = side == 0 ? left : right;
-        out.box.grow(item.box);
-        out.centroids.grow(item.centroid);
-    };
-#endif
+    side_gatherer<false> on[2]; // [0] left, [1] right
+    const auto take = [&](const build_item& item, int side) { on[side].take(item); };
     std::size_t i = 0, j = n;
     for (;;) {
         while (i < j && s.left_of(items[i].centroid))
@@ -300,10 +344,8 @@ inline std::size_t partition_items(build_item* items, std::size_t n, const split
             break;
         std::swap(items[i], items[j - 1]); // then both loops take them
     }
-#if RT_BVH_SSE
-    finish(0, left);
-    finish(1, right);
-#endif
+    on[0].finish(left);
+    on[1].finish(right);
     return i;
 }
 
