@@ -5,6 +5,7 @@
 // and an enum prints nothing useful; with it a failure shows the values, e.g.
 //     CHECK( (0.5, 0.5, 1) == (0.5, 0.5, 0) )
 //     CHECK( rec == ... ) with rec = {t 4, point (0, 0, -4), normal (0, 0, 1), front face, ...}
+// (vectors, rays, hit records, boxes and camera windows: rt::window).
 // Numbers are printed with enough digits to tell two neighbouring floats apart
 // (std::numeric_limits<T>::max_digits10), so a failure at the last bit shows.
 #pragma once
@@ -21,6 +22,7 @@
 #include <utility>
 
 #include <rt/aabb.hpp>
+#include <rt/camera_model.hpp>
 #include <rt/hit_record.hpp>
 #include <rt/ray.hpp>
 #include <rt/vec.hpp>
@@ -75,6 +77,21 @@ inline std::string text(const rt::aabb& box)
     return "box{lo " + text(box.lo) + ", hi " + text(box.hi) + "}";
 }
 
+inline std::string text(const rt::window& w)
+{
+    std::ostringstream out;
+    out << "window{l ";
+    put_number(out, w.l);
+    out << ", r ";
+    put_number(out, w.r);
+    out << ", b ";
+    put_number(out, w.b);
+    out << ", t ";
+    put_number(out, w.t);
+    out << '}';
+    return out.str();
+}
+
 /// Whether rt has a name_of(E) for this enum (found by argument-dependent lookup).
 template <class E, class = void>
 struct has_name_of : std::false_type {};
@@ -103,6 +120,11 @@ struct StringMaker<rt::hit_record> {
 template <>
 struct StringMaker<rt::aabb> {
     static String convert(const rt::aabb& box) { return rt_doctest::text(box).c_str(); }
+};
+
+template <>
+struct StringMaker<rt::window> {
+    static String convert(const rt::window& w) { return rt_doctest::text(w).c_str(); }
 };
 
 } // namespace doctest

@@ -5,6 +5,8 @@
 // what was expected, what was found.
 #include "rt_doctest.hpp"
 
+#include <optional>
+#include <sstream>
 #include <string>
 #include <variant>
 
@@ -27,6 +29,22 @@ std::string error_of(const std::string& text)
 
 bool one_line(const std::string& message) { return message.find('\n') == std::string::npos; }
 
+/// A camera's optional field of view or window in words, for messages.
+std::string fov_text(const std::optional<rt::real>& fov)
+{
+    if (!fov)
+        return "no field of view (cam.fov_degrees is empty)";
+    std::ostringstream out;
+    out << "fov ";
+    rt_doctest::put_number(out, *fov);
+    return out.str();
+}
+
+std::string window_text(const std::optional<rt::window>& plane)
+{
+    return plane ? rt_doctest::text(*plane) : std::string("no window (cam.plane is empty)");
+}
+
 } // namespace
 
 TEST_CASE("a camera line loads every field it states")
@@ -39,10 +57,13 @@ TEST_CASE("a camera line loads every field it states")
     CHECK(s.cam.eye == rt::vec3(1, 2, 3));
     CHECK(s.cam.look_at == rt::vec3(4, 5, 6));
     CHECK(s.cam.up == rt::vec3(0, 0, 1));
-    REQUIRE(s.cam.fov_degrees.has_value());
+    REQUIRE_MESSAGE(s.cam.fov_degrees.has_value(),
+                    "expected fov 30 from 'fov 30', found " << fov_text(s.cam.fov_degrees)
+                                                            << ": store the fov option in cam.fov_degrees");
     CHECK(*s.cam.fov_degrees == doctest::Approx(30));
     CHECK(s.cam.focal_distance == doctest::Approx(2));
-    CHECK_FALSE(s.cam.plane.has_value());
+    CHECK_FALSE_MESSAGE(s.cam.plane.has_value(),
+                        "expected no window (the line has no window option), found " << window_text(s.cam.plane));
 }
 
 TEST_CASE("an orthographic camera loads its window")
@@ -52,7 +73,10 @@ TEST_CASE("an orthographic camera loads its window")
     INFO("'image 200 100' and 'camera orthographic ... window -2 2 -1 1': expected an orthographic camera with the "
          "window l = -2, r = 2, b = -1, t = 1 (in that order) and a 200 x 100 image");
     CHECK(s.cam.kind == rt::projection::orthographic);
-    REQUIRE(s.cam.plane.has_value());
+    REQUIRE_MESSAGE(s.cam.plane.has_value(), "expected the window l = -2, r = 2, b = -1, t = 1 from 'window -2 2 -1 1', "
+                                             "found "
+                                                 << window_text(s.cam.plane)
+                                                 << ": store the window option in cam.plane");
     CHECK(s.cam.plane->l == doctest::Approx(-2));
     CHECK(s.cam.plane->r == doctest::Approx(2));
     CHECK(s.cam.plane->b == doctest::Approx(-1));
@@ -70,7 +94,9 @@ TEST_CASE("camera options may come in any order and default when left out")
     CHECK(a.cam.look_at == rt::vec3(0, 0, 0));
     const rt::scene b = rt::load_scene_from_string("camera perspective\n");
     CHECK(b.cam.eye == rt::camera{}.eye);
-    CHECK_FALSE(b.cam.fov_degrees.has_value());
+    CHECK_FALSE_MESSAGE(b.cam.fov_degrees.has_value(), "'camera perspective' has no fov option: expected no field of "
+                                                       "view (the renderer then uses its default), found "
+                                                           << fov_text(b.cam.fov_degrees));
 }
 
 TEST_CASE("a mesh path is relative to the scene file and the mesh keeps only what the file has")
@@ -84,8 +110,8 @@ TEST_CASE("a mesh path is relative to the scene file and the mesh keeps only wha
          "bounds (0, -1, -1) to (2, 1, 1)");
     CHECK(m.positions.size() == 8);
     CHECK(m.triangles.size() == 12); // six quads, triangulated
-    CHECK(m.normals.empty());
-    CHECK(m.texcoords.empty());
+    CHECK_MESSAGE(m.normals.empty(), "expected no normals (cube.obj has none), found " << m.normals.size());
+    CHECK_MESSAGE(m.texcoords.empty(), "expected no texture coordinates (cube.obj has none), found " << m.texcoords.size());
     const rt::aabb box = rt::scene_bounds(s);
     CHECK(box.lo == rt::vec3(0, -1, -1));
     CHECK(box.hi == rt::vec3(2, 1, 1));
@@ -96,11 +122,16 @@ TEST_CASE("scene bounds enclose every shape and nothing more")
     const rt::scene s = rt::load_scene_from_string(
         "sphere center 0 0 0 radius 1\nsphere center 5 0 0 radius 2\ntriangle -3 0 0  0 4 0  0 0 -7\n");
     const rt::aabb box = rt::scene_bounds(s);
-    INFO("spheres (0, 0, 0) r 1 and (5, 0, 0) r 2 and the triangle (-3, 0, 0) (0, 4, 0) (0, 0, -7): expected the "
-         "smallest box holding them, (-3, -2, -7) to (7, 4, 2); an empty scene has an empty box");
-    CHECK(box.lo == rt::vec3(-3, -2, -7));
-    CHECK(box.hi == rt::vec3(7, 4, 2));
-    CHECK(rt::scene_bounds(rt::scene{}).empty());
+    {
+        INFO("spheres (0, 0, 0) r 1 and (5, 0, 0) r 2 and the triangle (-3, 0, 0) (0, 4, 0) (0, 0, -7): expected the "
+             "smallest box holding them, (-3, -2, -7) to (7, 4, 2)");
+        CHECK(box.lo == rt::vec3(-3, -2, -7));
+        CHECK(box.hi == rt::vec3(7, 4, 2));
+    }
+    const rt::aabb none = rt::scene_bounds(rt::scene{});
+    CHECK_MESSAGE(none.empty(), "a scene without shapes: expected an empty box (lo > hi, as rt::aabb{} starts), found "
+                                    << none << ": start from rt::aabb{} and grow it by each shape's box, so that "
+                                               "nothing else is inside");
 }
 
 TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and what was found")
@@ -180,16 +211,19 @@ TEST_CASE("a camera written as a statement reads back as the same camera")
     cam.fov_degrees = rt::real(37.123456789);
     cam.focal_distance = rt::real(1.75);
     const rt::camera back = rt::parse_camera_statement(rt::camera_statement(cam));
-    INFO("the statement '" << rt::camera_statement(cam) << "' read back: expected every field exactly as written, "
-         "including the fov, and no window");
-    CHECK(back.kind == cam.kind);
-    CHECK(back.eye == cam.eye); // exactly, not approximately
-    CHECK(back.look_at == cam.look_at);
-    CHECK(back.up == cam.up);
-    REQUIRE(back.fov_degrees.has_value());
-    CHECK(*back.fov_degrees == *cam.fov_degrees);
-    CHECK(!back.plane.has_value());
-    CHECK(back.focal_distance == cam.focal_distance);
+    {
+        INFO("the statement '" << rt::camera_statement(cam) << "' read back: expected every field exactly as written, "
+             "including the fov, and no window");
+        CHECK(back.kind == cam.kind);
+        CHECK(back.eye == cam.eye); // exactly, not approximately
+        CHECK(back.look_at == cam.look_at);
+        CHECK(back.up == cam.up);
+        REQUIRE_MESSAGE(back.fov_degrees.has_value(), "expected " << fov_text(cam.fov_degrees) << ", found "
+                                                                  << fov_text(back.fov_degrees));
+        CHECK(*back.fov_degrees == *cam.fov_degrees);
+        CHECK_FALSE_MESSAGE(back.plane.has_value(), "expected no window, found " << window_text(back.plane));
+        CHECK(back.focal_distance == cam.focal_distance);
+    }
 
     cam.kind = rt::projection::orthographic;
     cam.fov_degrees.reset();
@@ -197,7 +231,8 @@ TEST_CASE("a camera written as a statement reads back as the same camera")
     const rt::camera flat = rt::parse_camera_statement(rt::camera_statement(cam));
     INFO("the orthographic statement '" << rt::camera_statement(cam) << "' read back: expected its window exactly");
     CHECK(flat.kind == rt::projection::orthographic);
-    REQUIRE(flat.plane.has_value());
+    REQUIRE_MESSAGE(flat.plane.has_value(), "expected " << window_text(cam.plane) << ", found "
+                                                        << window_text(flat.plane));
     CHECK(flat.plane->l == cam.plane->l);
     CHECK(flat.plane->r == cam.plane->r);
     CHECK(flat.plane->b == cam.plane->b);
@@ -214,7 +249,7 @@ TEST_CASE("a bad camera statement is one line whose column counts in the stateme
     }
     INFO("'perspective eye 0 0 1 look_at 0 0 1' (the eye on the point it looks at): expected one line starting "
          "'--camera:1:' and saying what was expected, found '" << message << "'");
-    CHECK(one_line(message));
+    CHECK_MESSAGE(one_line(message), "expected one line, found a line break in the message");
     CHECK(message.rfind("--camera:1:", 0) == 0);
     CHECK(message.find("expected") != std::string::npos);
     message.clear();
