@@ -62,9 +62,9 @@ TEST_CASE("the frame is orthonormal and right-handed, with w pointing away from 
         CHECK(glm::length(f.u) == doctest::Approx(1).epsilon(tol));
         CHECK(glm::length(f.v) == doctest::Approx(1).epsilon(tol));
         CHECK(glm::length(f.w) == doctest::Approx(1).epsilon(tol));
-        CHECK(std::fabs(glm::dot(f.u, f.v)) < tol);
-        CHECK(std::fabs(glm::dot(f.v, f.w)) < tol);
-        CHECK(std::fabs(glm::dot(f.w, f.u)) < tol);
+        CHECK_MESSAGE(std::fabs(glm::dot(f.u, f.v)) < tol, "expected u . v = 0, found " << glm::dot(f.u, f.v));
+        CHECK_MESSAGE(std::fabs(glm::dot(f.v, f.w)) < tol, "expected v . w = 0, found " << glm::dot(f.v, f.w));
+        CHECK_MESSAGE(std::fabs(glm::dot(f.w, f.u)) < tol, "expected w . u = 0, found " << glm::dot(f.w, f.u));
         check_near(glm::cross(f.u, f.v), f.w); // right-handed
         // w points from the target back to the eye
         const rt::vec3 back = glm::normalize(eyes[k] - targets[k]);
@@ -72,8 +72,9 @@ TEST_CASE("the frame is orthonormal and right-handed, with w pointing away from 
         // v leans towards up: up . v > 0, and up lies in the v-w plane
         INFO("v must lean towards up (up . v > 0): u = up x w, then v = w x u; u = w x up flips u and v, a half turn "
              "of the picture");
-        CHECK(glm::dot(ups[k], f.v) > 0);
-        CHECK(std::fabs(glm::dot(ups[k], f.u)) < tol);
+        CHECK_MESSAGE(glm::dot(ups[k], f.v) > 0, "expected up . v > 0, found " << glm::dot(ups[k], f.v));
+        CHECK_MESSAGE(std::fabs(glm::dot(ups[k], f.u)) < tol,
+                      "expected up . u = 0 (up in the v-w plane), found " << glm::dot(ups[k], f.u));
     }
 }
 
@@ -289,12 +290,14 @@ TEST_CASE("PPM output: P6 header, then width * height * 3 bytes, clamped and gam
     auto byte = [&](int x, int y, int channel) {
         return int(std::uint8_t(bytes[header.size() + std::size_t((y * 3 + x) * 3 + channel)]));
     };
-    CHECK(byte(0, 0, 0) == 255);
-    CHECK(byte(0, 0, 1) == 0);
-    CHECK(byte(1, 0, 0) == 255);
-    CHECK(byte(1, 0, 1) == 0);
-    CHECK(byte(1, 0, 2) == 180); // sqrt(0.5) * 255 = 180.3
-    CHECK(byte(2, 1, 0) == 128); // sqrt(0.25) * 255 = 127.5, rounded to nearest
+    CHECK_MESSAGE(byte(0, 0, 0) == 255, "pixel (0, 0), the first of the top row: expected red 1 stored as 255");
+    CHECK_MESSAGE(byte(0, 0, 1) == 0, "pixel (0, 0): expected green 0 stored as 0");
+    CHECK_MESSAGE(byte(1, 0, 0) == 255, "pixel (1, 0): expected red 2, clamped to 1, stored as 255");
+    CHECK_MESSAGE(byte(1, 0, 1) == 0, "pixel (1, 0): expected green -1, clamped to 0, stored as 0");
+    CHECK_MESSAGE(byte(1, 0, 2) == 180, "pixel (1, 0): expected blue 0.5 stored as round(255 sqrt(0.5)) = "
+                                        "round(180.3) = 180"); // sqrt(0.5) * 255 = 180.3
+    CHECK_MESSAGE(byte(2, 1, 0) == 128, "pixel (2, 1), the last of the second row: expected red 0.25 stored as "
+                                        "round(255 sqrt(0.25)) = round(127.5) = 128 (halves round up)");
 }
 
 TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no camera frame needed)")
@@ -396,19 +399,29 @@ TEST_CASE("jittered samples: the same generator state gives the same samples, an
         const std::vector<rt::vec2> c = rt::jittered_samples(2, 3, n, other);
         REQUIRE(a.size() == b.size());
         REQUIRE(a.size() == c.size());
+        // every sample is checked; the message names how many differ and the first
+        std::size_t changed = 0, first_changed = 0, fixed_x = 0, first_fixed_x = 0, fixed_y = 0, first_fixed_y = 0;
         for (std::size_t k = 0; k < a.size(); ++k) {
-            CAPTURE(k);
-            INFO("draw every random number from the generator passed in (no rand(), no std::random_device, "
-                 "no generator of your own): then the same seed gives the same samples");
-            CHECK(a[k] == b[k]);
+            if (!(a[k] == b[k]) && changed++ == 0)
+                first_changed = k;
+            if (!(a[k].x != c[k].x) && fixed_x++ == 0)
+                first_fixed_x = k;
+            if (!(a[k].y != c[k].y) && fixed_y++ == 0)
+                first_fixed_y = k;
         }
-        for (std::size_t k = 0; k < a.size(); ++k) {
-            CAPTURE(k);
-            INFO("every sample is jittered, x and y: a fixed point in its cell (its centre, its corner) is the same "
-                 "for every seed");
-            CHECK(a[k].x != c[k].x);
-            CHECK(a[k].y != c[k].y);
-        }
+        CHECK_MESSAGE(changed == 0, "expected the same samples from the same generator state, found "
+                                        << changed << " of " << a.size() << " different, the first: sample " << first_changed << " at "
+                                        << a[first_changed] << ", then at " << b[first_changed]
+                                        << ": draw every random number from the generator passed in (no rand(), no "
+                                           "std::random_device, no generator of your own)");
+        INFO("every sample is jittered, x and y: a fixed point in its cell (its centre, its corner) is the same for "
+             "every seed");
+        CHECK_MESSAGE(fixed_x == 0, "expected every sample's x to change with the seed (7, then 8), found "
+                                        << fixed_x << " of " << a.size() << " the same, the first: sample "
+                                        << first_fixed_x << " at x = " << a[first_fixed_x].x << " with both seeds");
+        CHECK_MESSAGE(fixed_y == 0, "expected every sample's y to change with the seed (7, then 8), found "
+                                        << fixed_y << " of " << a.size() << " the same, the first: sample "
+                                        << first_fixed_y << " at y = " << a[first_fixed_y].y << " with both seeds");
     }
 }
 
@@ -437,12 +450,18 @@ TEST_CASE("jittered samples are uniform in their cells: offsets spread over the 
     }
     REQUIRE(count == 4096);
     INFO("xi1 and xi2 are uniform in [0, 1): use next_float() as it is, divided by n with the cell index");
-    CHECK(std::fabs(sum_x / count - 0.5) < 0.02);
-    CHECK(std::fabs(sum_y / count - 0.5) < 0.02);
-    CHECK(low_x < 0.05);
-    CHECK(high_x > 0.95);
-    CHECK(low_y < 0.05);
-    CHECK(high_y > 0.95);
+    CHECK_MESSAGE(std::fabs(sum_x / count - 0.5) < 0.02, "expected the mean offset of x in its cell, (x - i) n - a, "
+                                                         "within 0.02 of 1/2, found " << sum_x / count);
+    CHECK_MESSAGE(std::fabs(sum_y / count - 0.5) < 0.02, "expected the mean offset of y in its cell, (y - j) n - b, "
+                                                         "within 0.02 of 1/2, found " << sum_y / count);
+    CHECK_MESSAGE(low_x < 0.05, "expected offsets of x in the cell down to 0 (the smallest below 0.05), found the "
+                                "smallest " << low_x);
+    CHECK_MESSAGE(high_x > 0.95, "expected offsets of x in the cell up to 1 (the largest above 0.95), found the "
+                                 "largest " << high_x);
+    CHECK_MESSAGE(low_y < 0.05, "expected offsets of y in the cell down to 0 (the smallest below 0.05), found the "
+                                "smallest " << low_y);
+    CHECK_MESSAGE(high_y > 0.95, "expected offsets of y in the cell up to 1 (the largest above 0.95), found the "
+                                 "largest " << high_y);
 }
 
 TEST_CASE("box reconstruction: the average of a constant is that constant")
@@ -521,12 +540,20 @@ TEST_CASE("box reconstruction: samples outside the pixel count for nothing, and 
         values.emplace_back(100.0f);
     }
     const rt::color got = rt::box_reconstruct(i, j, positions, values);
-    INFO("only the samples in the square [i, i + 1] x [j, j + 1] count: (0.5 + 1) / 2 = 0.75");
-    CHECK(got.r == doctest::Approx(0.75));
-    CHECK(got.g == doctest::Approx(0.75));
-    CHECK(got.b == doctest::Approx(0.75));
+    {
+        INFO("pixel (4, 1): 2 of the 8 samples are inside it, with the values 0.5 and 1, and 6 outside, with 100: "
+             "only the samples in the square [i, i + 1] x [j, j + 1] count, so expected (0.5 + 1) / 2 = 0.75 in each "
+             "channel, found "
+             << rt_doctest::text(got)
+             << std::string(std::fabs(got.r - 1.5f / 8) < 1e-6f // a std::string: doctest prints a char* as a pointer
+                                ? ": that is (0.5 + 1) / 8, divided by all 8 samples, not by the 2 inside"
+                                : ""));
+        CHECK(got.r == doctest::Approx(0.75));
+        CHECK(got.g == doctest::Approx(0.75));
+        CHECK(got.b == doctest::Approx(0.75));
+    }
     const rt::color none = rt::box_reconstruct(7, 7, positions, values);
-    INFO("a pixel with no sample inside is black (0, 0, 0), never 0 / 0");
+    INFO("a pixel with no sample inside is black (0, 0, 0), never 0 / 0; found " << rt_doctest::text(none));
     CHECK(none.r == 0);
     CHECK(none.g == 0);
     CHECK(none.b == 0);
@@ -551,7 +578,10 @@ TEST_CASE("jittered samples with the box on an edge: the covered fraction is off
                 CAPTURE(c);
                 CAPTURE(seed);
                 CAPTURE(estimate);
-                CHECK(std::fabs(estimate - c) <= 1.0 / n + 1e-6);
+                CHECK_MESSAGE(std::fabs(estimate - c) <= 1.0 / n + 1e-6,
+                              "pixel (2, 1) white left of x = 2 + c and black right of it: expected the box average "
+                              "of the n x n jittered samples within 1 / n = " << 1.0 / n << " of c = " << c
+                                  << " (only the column of cells the edge crosses is a guess), found " << estimate);
             }
 }
 
