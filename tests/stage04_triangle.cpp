@@ -172,8 +172,9 @@ TEST_CASE("the list returns the closest hit and the any-hit answer of the librar
             const bool list_hit = rt::closest_hit_list(s, r, 0, rt::infinity, from_list);
             const bool tree_hit = tree.closest_hit(r, 0, rt::infinity, from_tree);
             INFO("ray " << k << " of " << rays.size() << ": " << r);
-            REQUIRE_MESSAGE(list_hit == tree_hit, "expected " << (tree_hit ? "a hit" : "no hit") << ", found "
-                                                              << (list_hit ? "a hit" : "none"));
+            // std::string: doctest prints a char* (what a ?: of two literals is) as a pointer
+            REQUIRE_MESSAGE(list_hit == tree_hit, "expected " << std::string(tree_hit ? "a hit" : "no hit")
+                                                              << ", found " << std::string(list_hit ? "a hit" : "none"));
             if (list_hit) {
                 ++hits;
                 REQUIRE_MESSAGE(same_hit(from_list, from_tree),
@@ -189,7 +190,7 @@ TEST_CASE("the list returns the closest hit and the any-hit answer of the librar
             for (real tmax : {before, beyond, rt::infinity}) {
                 const bool expected = tree.any_hit(r, 0, tmax);
                 REQUIRE_MESSAGE(rt::any_hit_list(s, r, 0, tmax) == expected,
-                                "any_hit_list with tmax = " << tmax << ": expected " << (expected ? "true" : "false"));
+                                "any_hit_list with tmax = " << tmax << ": expected " << std::string(expected ? "true" : "false"));
             }
         }
         MESSAGE(kind_name << ": " << s.shapes.size() << " shapes, " << rays.size() << " rays, " << hits << " hits");

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -355,9 +356,10 @@ TEST_CASE("leaving glass beyond the critical angle: only the reflected ray is tr
         const bool tir = degrees > 42;
         CAPTURE(degrees);
         CHECK_MESSAGE(queries == (tir ? 2u : 3u),
-                      "expected " << (tir ? "2 queries (the camera ray, the reflected ray: beyond the critical angle "
-                                            "refract returns false and no refracted ray is traced)"
-                                          : "3 queries (the camera ray, the reflected ray, the refracted ray)")
+                      "expected " << std::string(tir ? "2 queries (the camera ray, the reflected ray: beyond the "
+                                                       "critical angle refract returns false and no refracted ray "
+                                                       "is traced)"
+                                                     : "3 queries (the camera ray, the reflected ray, the refracted ray)")
                                   << ", found " << queries);
         const double distance = 1 / std::cos(theta);
         INFO("a = (0.3, 0.2, 0.1): expected exp(-a s) B with s = " << distance << " the distance travelled inside "
