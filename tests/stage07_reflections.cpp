@@ -65,9 +65,11 @@ TEST_CASE("reflect: same length, angle in equals angle out, twice is the identit
         CHECK(glm::dot(r, n) == doctest::Approx(-glm::dot(d, n)));
         // the tangential part is kept
         const rt::vec3 tangential_d = d - glm::dot(d, n) * n, tangential_r = r - glm::dot(r, n) * n;
-        CHECK(glm::length(tangential_d - tangential_r) < 1e-5);
+        CHECK_MESSAGE(glm::length(tangential_d - tangential_r) < 1e-5,
+                      "expected the tangential part d - (d.n) n = " << tangential_d << " kept, found "
+                                                                    << tangential_r);
         const rt::vec3 back = rt::reflect(r, n);
-        CHECK(glm::length(back - d) < 1e-5);
+        CHECK_MESSAGE(glm::length(back - d) < 1e-5, "expected reflect(r, n) = d = " << d << ", found " << back);
     }
     // straight down onto a floor comes straight back up
     const rt::vec3 up = rt::reflect({0, -3, 0}, {0, 1, 0});
@@ -94,13 +96,24 @@ TEST_CASE("a mirror shows km times the colour of what it reflects")
     // A ray from (4, 0, 4) to the mirror point (2, 0, 0) reflects to (0, 0, 4),
     // the bottom of the ball: L = mirror ambient (0) + km * ka_ball * Ia.
     const rt::ray r{rt::vec3(4, 0, 4), rt::vec3(-2, 0, -4)};
-    check_color(rt::ray_color(s, accel, r), 0.5 * 0.2, 0.6 * 0.4, 0.7 * 0.8);
-    // The ball seen directly: its own ambient colour.
-    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0, 0, 20), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
-    // A reflected ray that misses everything sees km times the background.
-    check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(9, 9, 1), rt::vec3(0.1f, 0.1f, -1)}), 0.05, 0.12, 0.21);
+    {
+        INFO("the ray from (4, 0, 4) meets the mirror floor (ka 0, km (0.5, 0.6, 0.7)) at (2, 0, 0) and reflects to "
+             "the bottom of the ball (ka (0.2, 0.4, 0.8)): expected km ka_ball Ia");
+        check_color(rt::ray_color(s, accel, r), 0.5 * 0.2, 0.6 * 0.4, 0.7 * 0.8);
+    }
+    {
+        INFO("the ball seen directly (not a mirror): expected its own ambient colour ka Ia, nothing reflected");
+        check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0, 0, 20), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
+    }
+    {
+        INFO("the ray meets the mirror floor at (9.1, 9.1, 0) and its reflection misses everything: expected km times "
+             "the background (0.1, 0.2, 0.3)");
+        check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(9, 9, 1), rt::vec3(0.1f, 0.1f, -1)}), 0.05, 0.12, 0.21);
+    }
     // With max_depth 0 there is no reflection at all.
     s.max_depth = 0;
+    INFO("max_depth 0: the camera ray is at depth 0 and no reflection is traced, so the mirror shows only its own "
+         "ka Ia = 0; a colour here means a reflection was traced: trace one only while depth < s.max_depth");
     check_color(rt::ray_color(s, accel, r), 0, 0, 0);
 }
 
@@ -121,8 +134,13 @@ TEST_CASE("two facing mirrors: recursion stops at max_depth with a bounded geome
         const rt::color L = rt::ray_color(s, accel, rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
         const double expected = a * (1 - std::pow(k, D + 1)) / (1 - k);
         CAPTURE(D);
+        INFO("two facing mirrors (ka = 0.1, km = 0.9), max_depth D: expected the camera ray and D reflections, "
+             "a (1 + k + ... + k^D) = " << expected << "; more light means more reflections (trace one only while "
+             "depth < s.max_depth, and give the reflected ray depth + 1), less means fewer");
         check_color(L, expected, expected, expected, 1e-4);
-        CHECK(double(L.r) < a / (1 - k));
+        CHECK_MESSAGE(double(L.r) < a / (1 - k), "expected less than the infinite sum a / (1 - k) = " << a / (1 - k)
+                                                                                                      << ", found "
+                                                                                                      << L.r);
     }
 }
 
@@ -162,7 +180,11 @@ TEST_CASE("two facing mirrors: exactly 1 + max_depth closest-hit queries")
         rt::ray_color(s, rt::counting_accelerator{&accel, &queries},
                       rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
         CAPTURE(D);
-        CHECK(queries == std::uint64_t(D + 1));
+        CHECK_MESSAGE(queries == std::uint64_t(D + 1),
+                      "expected max_depth + 1 = " << D + 1 << " closest-hit queries (the camera ray at depth 0 and a "
+                      "reflection at each depth 1 to max_depth), found " << queries
+                                                  << ": trace a reflection only while depth < s.max_depth, and give "
+                                                     "the reflected ray depth + 1");
     }
 }
 
