@@ -86,9 +86,16 @@ TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays 
     // T(x) = 1 where 0.08 x^2 - 0.56 x - 0.14 = 0: x = (0.56 + sqrt(0.56^2 + 4 * 0.08 * 0.14)) / 0.16
     const double x_one = (0.56 + std::sqrt(0.56 * 0.56 + 4 * 0.08 * 0.14)) / 0.16;
     CHECK(x_one == doctest::Approx(7.2417).epsilon(1e-4));
-    CHECK(rt::tonemap_aces(float(x_one) * 0.98f) < 1.0f);
-    CHECK(rt::tonemap_aces(float(x_one) * 1.02f) == 1.0f);
-    CHECK(rt::tonemap_aces(1e30f) == 1.0f);
+    CHECK_MESSAGE(rt::tonemap_aces(float(x_one) * 0.98f) < 1.0f,
+                  "expected T(x) below 1 at x = 0.98 * 7.2417 = " << float(x_one) * 0.98f << ", found "
+                                                                  << rt::tonemap_aces(float(x_one) * 0.98f));
+    CHECK_MESSAGE(rt::tonemap_aces(float(x_one) * 1.02f) == 1.0f,
+                  "expected T(x) = 1 at x = 1.02 * 7.2417 = " << float(x_one) * 1.02f << " (beyond 7.2417 the fit "
+                  "is above 1, on its way to 2.51 / 2.43 = 1.033: clamp it to 1), found "
+                      << rt::tonemap_aces(float(x_one) * 1.02f));
+    CHECK_MESSAGE(rt::tonemap_aces(1e30f) == 1.0f, "expected T(1e30) = 1: there x (2.51 x + 0.03) overflows float to "
+                                                   "inf, and inf / inf is NaN; found "
+                                                       << rt::tonemap_aces(1e30f));
     CHECK(rt::tonemap_aces(std::numeric_limits<float>::infinity()) == 1.0f);
     CHECK(rt::tonemap_aces(-3.0f) == 0.0f);
     CHECK(rt::tonemap_aces(std::nanf("")) == 0.0f);
@@ -96,7 +103,8 @@ TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays 
     for (float x = 0.01f; x < 7.0f; x += 0.01f) {
         const float t = rt::tonemap_aces(x);
         CAPTURE(x);
-        REQUIRE(t > previous);
+        REQUIRE_MESSAGE(t > previous, "expected T increasing below x = 7.24: T(x) = " << t << " after " << previous
+                                                                                    << " at x - 0.01");
         previous = t;
     }
 }
@@ -118,15 +126,22 @@ TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
     const float below = rt::srgb_encode(std::nextafter(x0, 0.0f));
     const float above = rt::srgb_encode(std::nextafter(x0, 1.0f));
     CHECK(below == doctest::Approx(0.0404499).epsilon(1e-5));
-    CHECK(std::fabs(above - below) < 1e-6f);
+    CHECK_MESSAGE(std::fabs(above - below) < 1e-6f, "expected the two pieces to meet at x = 0.0031308: just below it "
+                                                    "the encoding is "
+                                                        << below << ", just above it " << above);
     // increasing, and decode inverts it
     float previous = -1;
     for (int k = 0; k <= 1000; ++k) {
         const float x = float(k) / 1000;
         const float v = rt::srgb_encode(x);
         CAPTURE(x);
-        REQUIRE(v > previous);
-        REQUIRE(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3));
+        REQUIRE_MESSAGE(v > previous, "expected the encoding increasing: srgb_encode(x) = " << v << " after "
+                                                                                           << previous << " at x - 0.001");
+        REQUIRE_MESSAGE(rt::srgb_decode(v) == doctest::Approx(x).epsilon(1e-5).scale(1e-3),
+                        "expected srgb_decode(srgb_encode(x)) = x: srgb_encode(x) = "
+                            << v << ", which the given srgb_decode turns back into " << rt::srgb_decode(v)
+                            << "; the linear piece ends at x = 0.0031308 (0.04045 is where the decode's ends, "
+                               "at V = 12.92 * 0.0031308)");
         previous = v;
     }
     // the decode side's own known point: v = 0.04045 is x = 0.04045 / 12.92
