@@ -29,6 +29,8 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <sstream>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -74,6 +76,29 @@ void exact_interval(const rt::aabb& box, const rt::ray& r, long double& enter, l
     }
 }
 
+/// The number of failures of one kind in a loop, and the first one in words.
+struct problems {
+    std::size_t count = 0;
+    std::string first;
+    template <class Describe>
+    void add(Describe&& describe)
+    {
+        if (count++ == 0) {
+            std::ostringstream out;
+            describe(out);
+            first = out.str();
+        }
+    }
+};
+
+/// A ray and its interval in words: "(-5, 0, 0) + t (1, 0, 0), t in [0, inf]".
+std::string ray_words(const vec3& o, const vec3& d, real tmin, real tmax)
+{
+    std::ostringstream out;
+    out << rt_doctest::text(o) << " + t " << rt_doctest::text(d) << ", t in [" << tmin << ", " << tmax << "]";
+    return out.str();
+}
+
 /// Same hit: t, shape, primitive (for a mesh), point, normals, material.
 bool same_hit(const rt::scene& s, const rt::hit_record& a, const rt::hit_record& b)
 {
@@ -94,49 +119,86 @@ TEST_CASE("the slab test, hits and misses worked out by hand: axis-parallel rays
     const rt::aabb box = box_of(vec3(-1, -1, -1), vec3(1, 2, 3));
     const real zero = 0, minus_zero = -real(0);
     real tnear = 0;
+    std::string asked; // the last ray asked about, in words
     auto hits = [&](const vec3& o, const vec3& d, real tmin = 0, real tmax = inf) {
         tnear = -42;
+        asked = ray_words(o, d, tmin, tmax);
         return rt::hit_box_textbook(box, rt::ray{o, d}, tmin, tmax, tnear);
     };
-    INFO("the box is [-1, 1] x [-1, 2] x [-1, 3], closed; a hit sets tnear to where the ray enters it");
-    CHECK(hits({-5, 0, 0}, {1, zero, zero}));
-    CHECK(tnear == 4);
-    CHECK(hits({-5, 0, 0}, {2, zero, zero})); // t counts lengths of d
-    CHECK(tnear == 2);
-    CHECK(hits({-5, 0.5f, 1}, {1, minus_zero, minus_zero})); // -0: 1/d is -inf, the ray stays in those slabs
-    CHECK(tnear == 4);
-    CHECK(hits({0, 0, 9}, {zero, minus_zero, -3}));
-    CHECK(tnear == 2);
-    CHECK(hits({-3, -3, -3}, {1, 1, 1})); // through the corner region: enters at x = y = z = -1
-    CHECK(tnear == 2);
-    CHECK(hits({4, 5, 6}, {-1, -1, -1})); // from the far side: enters at x = 1, y = 2, z = 3 at t = 3
-    CHECK(tnear == 3);
-    INFO("misses: beside the box, pointing away, parallel outside a slab with +0 or -0");
-    CHECK_FALSE(hits({-5, 2.5f, 0}, {1, zero, zero}));
-    CHECK(tnear == -42); // a miss leaves tnear as it was
-    CHECK_FALSE(hits({-5, 0, 0}, {-1, zero, zero}));
-    CHECK_FALSE(hits({-5, 0, 4}, {1, zero, minus_zero}));
-    CHECK_FALSE(hits({0, -3, 0}, {minus_zero, minus_zero, 1}));
-    CHECK_FALSE(hits({-3, -3, -3}, {1, -1, 1}));
+    {
+        INFO("the box is [-1, 1] x [-1, 2] x [-1, 3], closed; a hit sets tnear to where the ray enters it");
+        CHECK_MESSAGE(hits({-5, 0, 0}, {1, zero, zero}), "expected " << asked << " to enter the box at t = 4, found a miss");
+        CHECK_MESSAGE(tnear == 4, "expected tnear = 4 for " << asked << ", found " << tnear);
+        CHECK_MESSAGE(hits({-5, 0, 0}, {2, zero, zero}), // t counts lengths of d
+                      "expected " << asked << " to enter the box at t = 2 (t counts lengths of d), found a miss");
+        CHECK_MESSAGE(tnear == 2, "expected tnear = 2 for " << asked << ", found " << tnear);
+        CHECK_MESSAGE(hits({-5, 0.5f, 1}, {1, minus_zero, minus_zero}), // -0: 1/d is -inf, the ray stays in those slabs
+                      "expected " << asked << " to enter the box at t = 4 (d.y = d.z = -0: 1 / -0 = -inf, and the ray "
+                                              "stays inside the y and z slabs), found a miss");
+        CHECK_MESSAGE(tnear == 4, "expected tnear = 4 for " << asked << ", found " << tnear);
+        CHECK_MESSAGE(hits({0, 0, 9}, {zero, minus_zero, -3}),
+                      "expected " << asked << " to enter the box at t = 2 (z = 3), found a miss");
+        CHECK_MESSAGE(tnear == 2, "expected tnear = 2 for " << asked << ", found " << tnear);
+        CHECK_MESSAGE(hits({-3, -3, -3}, {1, 1, 1}), // through the corner region: enters at x = y = z = -1
+                      "expected " << asked << " to enter the box at its corner (-1, -1, -1), t = 2, found a miss");
+        CHECK_MESSAGE(tnear == 2, "expected tnear = 2 for " << asked << ", found " << tnear);
+        CHECK_MESSAGE(hits({4, 5, 6}, {-1, -1, -1}), // from the far side: enters at x = 1, y = 2, z = 3 at t = 3
+                      "expected " << asked << " to enter the box at its corner (1, 2, 3), t = 3, found a miss");
+        CHECK_MESSAGE(tnear == 3, "expected tnear = 3 for " << asked << ", found " << tnear);
+    }
+    {
+        INFO("misses: beside the box, pointing away, parallel outside a slab with +0 or -0");
+        CHECK_FALSE_MESSAGE(hits({-5, 2.5f, 0}, {1, zero, zero}),
+                            "expected " << asked << " to miss (y = 2.5, above the box), found a hit at tnear = " << tnear);
+        CHECK_MESSAGE(tnear == -42, "expected a miss to leave tnear as it was (-42), found " << tnear);
+        CHECK_FALSE_MESSAGE(hits({-5, 0, 0}, {-1, zero, zero}),
+                            "expected " << asked << " to miss (it points away from the box), found a hit at tnear = "
+                                        << tnear);
+        CHECK_FALSE_MESSAGE(hits({-5, 0, 4}, {1, zero, minus_zero}),
+                            "expected " << asked << " to miss (z = 4, beside the box, d.z = -0), found a hit at tnear = "
+                                        << tnear);
+        CHECK_FALSE_MESSAGE(hits({0, -3, 0}, {minus_zero, minus_zero, 1}),
+                            "expected " << asked << " to miss (y = -3, below the box, d.x = d.y = -0), found a hit at "
+                                                    "tnear = "
+                                        << tnear);
+        CHECK_FALSE_MESSAGE(hits({-3, -3, -3}, {1, -1, 1}),
+                            "expected " << asked << " to miss (y falls away from the box), found a hit at tnear = "
+                                        << tnear);
+    }
     INFO("the interval [tmin, tmax]: an origin inside enters at tmin; the box before tmin or beyond tmax is missed");
-    CHECK(hits({0, 0, 0}, {1, 1, 1}, real(0.25)));
-    CHECK(tnear == real(0.25));
-    CHECK(hits({0, 0, 0}, {1, 1, 1}));
-    CHECK(tnear == 0);
-    CHECK_FALSE(hits({-5, 0, 0}, {1, zero, zero}, 0, 3)); // it enters at 4
-    CHECK_FALSE(hits({-5, 0, 0}, {1, zero, zero}, 7));    // it leaves at 6
-    CHECK(hits({-5, 0, 0}, {1, zero, zero}, 5, 5.5f));
-    CHECK(tnear == 5);
-    CHECK_FALSE(hits({5, 0, 0}, {1, zero, zero})); // behind the ray
+    CHECK_MESSAGE(hits({0, 0, 0}, {1, 1, 1}, real(0.25)),
+                  "expected " << asked << " (from inside the box) to hit, entering at tmin = 0.25; found a miss");
+    CHECK_MESSAGE(tnear == real(0.25), "expected tnear = 0.25 for " << asked << ", found " << tnear);
+    CHECK_MESSAGE(hits({0, 0, 0}, {1, 1, 1}), "expected " << asked << " (from inside the box) to hit, entering at "
+                                                                       "tmin = 0; found a miss");
+    CHECK_MESSAGE(tnear == 0, "expected tnear = 0 for " << asked << ", found " << tnear);
+    CHECK_FALSE_MESSAGE(hits({-5, 0, 0}, {1, zero, zero}, 0, 3), // it enters at 4
+                        "expected " << asked << " to miss: the ray enters the box at t = 4, beyond tmax = 3; found a "
+                                                "hit at tnear = "
+                                    << tnear);
+    CHECK_FALSE_MESSAGE(hits({-5, 0, 0}, {1, zero, zero}, 7), // it leaves at 6
+                        "expected " << asked << " to miss: the ray leaves the box at t = 6, before tmin = 7; found a "
+                                                "hit at tnear = "
+                                    << tnear);
+    CHECK_MESSAGE(hits({-5, 0, 0}, {1, zero, zero}, 5, 5.5f),
+                  "expected " << asked << " to hit, entering at tmin = 5 (the ray is inside the box from t = 4 to 6); "
+                                          "found a miss");
+    CHECK_MESSAGE(tnear == 5, "expected tnear = 5 for " << asked << ", found " << tnear);
+    CHECK_FALSE_MESSAGE(hits({5, 0, 0}, {1, zero, zero}), // behind the ray
+                        "expected " << asked << " to miss: the box is behind the origin; found a hit at tnear = "
+                                    << tnear);
 }
 
 TEST_CASE("the slab test finds no hit in the empty box")
 {
     const rt::aabb empty; // lo = +inf, hi = -inf
     real tnear = -42;
-    CHECK_FALSE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 2, 3)}, 0, inf, tnear));
-    CHECK_FALSE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 0, -real(0))}, 0, inf, tnear));
-    CHECK(tnear == -42);
+    CHECK_FALSE_MESSAGE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 2, 3)}, 0, inf, tnear),
+                        "expected a miss in the empty box (lo = +inf, hi = -inf), found a hit at tnear = " << tnear);
+    CHECK_FALSE_MESSAGE(rt::hit_box_textbook(empty, rt::ray{vec3(0), vec3(1, 0, -real(0))}, 0, inf, tnear),
+                        "expected a miss in the empty box for the direction (1, 0, -0), found a hit at tnear = "
+                            << tnear);
+    CHECK_MESSAGE(tnear == -42, "expected a miss to leave tnear as it was (-42), found " << tnear);
 }
 
 TEST_CASE("the slab test on random boxes and rays agrees with the exact interval where the ray clears the boundary")
@@ -176,14 +238,20 @@ TEST_CASE("the slab test on random boxes and rays agrees with the exact interval
             ++hits;
             CAPTURE(r);
             CAPTURE(box);
-            REQUIRE(hit);
-            CHECK(std::fabs((long double)tnear - enter) <= 1e-4L * (enter + 1e-6L));
+            REQUIRE_MESSAGE(hit, "expected a hit: the ray is inside the box from t = "
+                                     << double(enter) << " to t = " << double(exit) << " (exact); found a miss");
+            CHECK_MESSAGE(std::fabs((long double)tnear - enter) <= 1e-4L * (enter + 1e-6L),
+                          "expected tnear = " << double(enter) << " (where the ray enters the box, exact), found "
+                                              << tnear);
         } else if (enter - exit > margin) {
             ++checked;
             ++misses;
             CAPTURE(r);
             CAPTURE(box);
-            REQUIRE_FALSE(hit);
+            REQUIRE_FALSE_MESSAGE(hit, "expected a miss: for t >= 0 the ray is never inside all three slabs at once "
+                                       "(it would be from t = "
+                                           << double(enter) << " to t = " << double(exit)
+                                           << ", exact); found a hit at tnear = " << tnear);
         }
     }
     MESSAGE(checked << " rays checked: " << hits << " clear hits, " << misses << " clear misses");
@@ -201,53 +269,77 @@ namespace {
 void check_groups(const rt::groups& g, const std::vector<rt::group_item>& items, std::size_t leaf_size)
 {
     CAPTURE(leaf_size);
-    REQUIRE(g.items.size() == items.size());
+    REQUIRE_MESSAGE(g.items.size() == items.size(),
+                    "expected g.items to be the " << items.size() << " items given, found " << g.items.size());
     for (std::size_t i = 0; i < items.size(); ++i) {
-        INFO("g.items is the list of items given, in the same order");
+        INFO("g.items is the list of items given, in the same order; item " << i);
         REQUIRE(g.items[i].shape == items[i].shape);
         REQUIRE(g.items[i].primitive == items[i].primitive);
     }
-    REQUIRE(g.order.size() == items.size());
+    REQUIRE_MESSAGE(g.order.size() == items.size(),
+                    "expected g.order to list each of the " << items.size() << " items once, found " << g.order.size()
+                                                            << " entries");
     if (items.empty()) {
-        CHECK(g.nodes.empty());
+        CHECK_MESSAGE(g.nodes.empty(), "expected no nodes for no items, found " << g.nodes.size());
         return;
     }
-    REQUIRE_FALSE(g.nodes.empty());
-    REQUIRE(g.nodes[0].first == 0);
-    REQUIRE(g.nodes[0].count == items.size());
+    REQUIRE_MESSAGE(!g.nodes.empty(), "expected a root node (node 0) for " << items.size() << " items, found no nodes");
+    REQUIRE_MESSAGE(g.nodes[0].first == 0, "expected the root (node 0) to start at order[0], found first = "
+                                               << g.nodes[0].first);
+    REQUIRE_MESSAGE(g.nodes[0].count == items.size(), "expected the root (node 0) to hold all " << items.size()
+                                                          << " items, found count = " << g.nodes[0].count);
     // walk the tree from the root: every node reached once, every item in one leaf
     std::vector<int> in_leaves(items.size(), 0), reached(g.nodes.size(), 0);
     std::vector<std::uint32_t> to_do{0};
-    std::size_t bad_boxes = 0, bad_splits = 0, bad_leaves = 0, bad_children = 0;
+    problems bad_boxes, bad_splits, bad_leaves, bad_children;
     while (!to_do.empty()) {
         const std::uint32_t index = to_do.back();
         to_do.pop_back();
-        REQUIRE(index < g.nodes.size());
-        REQUIRE(reached[index] == 0); // a tree: no node is a child twice
+        REQUIRE_MESSAGE(index < g.nodes.size(), "expected a child index below " << g.nodes.size() << " (the number of "
+                                                "nodes), found " << index);
+        REQUIRE_MESSAGE(reached[index] == 0, "expected a tree, found node " << index << " the child of two nodes");
         reached[index] = 1;
         const rt::group_node& node = g.nodes[index];
-        REQUIRE(std::size_t(node.first) + node.count <= g.order.size());
+        REQUIRE_MESSAGE(std::size_t(node.first) + node.count <= g.order.size(),
+                        "expected node " << index << "'s items, order[first .. first + count), inside g.order (size "
+                                         << g.order.size() << "), found first = " << node.first << ", count = "
+                                         << node.count);
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
-            REQUIRE(g.order[k] < items.size());
-            bad_boxes += encloses(node.box, items[g.order[k]].box) ? 0 : 1;
+            REQUIRE_MESSAGE(g.order[k] < items.size(), "expected an item index below " << items.size() << " in order["
+                                                                                       << k << "], found " << g.order[k]);
+            if (!encloses(node.box, items[g.order[k]].box))
+                bad_boxes.add([&](std::ostream& o) {
+                    o << "node " << index << "'s box " << rt_doctest::text(node.box) << " does not enclose item "
+                      << g.order[k] << "'s box " << rt_doctest::text(items[g.order[k]].box);
+                });
         }
         if (node.leaf()) {
-            bad_leaves += node.count >= 1 && node.count <= leaf_size ? 0 : 1;
+            if (!(node.count >= 1 && node.count <= leaf_size))
+                bad_leaves.add([&](std::ostream& o) { o << "leaf " << index << " holds " << node.count << " items"; });
             for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
                 ++in_leaves[g.order[k]];
             continue;
         }
-        REQUIRE(node.left < g.nodes.size());
-        REQUIRE(node.right < g.nodes.size());
+        REQUIRE_MESSAGE(node.left < g.nodes.size(), "expected node " << index << "'s left child below " << g.nodes.size()
+                                                                     << ", found " << node.left);
+        REQUIRE_MESSAGE(node.right < g.nodes.size(), "expected node " << index << "'s right child below "
+                                                                      << g.nodes.size() << ", found " << node.right);
         const rt::group_node& left = g.nodes[node.left];
         const rt::group_node& right = g.nodes[node.right];
         // the median split: count / 2 to the left, the rest to the right, in order
-        bad_children += node.count > leaf_size && left.first == node.first && left.count == node.count / 2 &&
-                                right.first == node.first + node.count / 2 &&
-                                right.count == node.count - node.count / 2
-                            ? 0
-                            : 1;
-        bad_boxes += encloses(node.box, left.box) && encloses(node.box, right.box) ? 0 : 1;
+        if (!(node.count > leaf_size && left.first == node.first && left.count == node.count / 2 &&
+              right.first == node.first + node.count / 2 && right.count == node.count - node.count / 2))
+            bad_children.add([&](std::ostream& o) {
+                o << "node " << index << " (first " << node.first << ", count " << node.count
+                  << ") is split into (first " << left.first << ", count " << left.count << ") and (first "
+                  << right.first << ", count " << right.count << ")";
+            });
+        if (!(encloses(node.box, left.box) && encloses(node.box, right.box)))
+            bad_boxes.add([&](std::ostream& o) {
+                o << "node " << index << "'s box " << rt_doctest::text(node.box)
+                  << " does not enclose its children's boxes " << rt_doctest::text(left.box) << " and "
+                  << rt_doctest::text(right.box);
+            });
         // along an axis where the centroids spread the most, no left centroid beyond a right one
         rt::aabb centroids;
         for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
@@ -265,26 +357,43 @@ void check_groups(const rt::groups& g, const std::vector<rt::group_item>& items,
                 right_min = std::min(right_min, items[g.order[k]].centroid[axis]);
             separated = separated || left_max <= right_min;
         }
-        bad_splits += separated ? 0 : 1;
+        if (!separated)
+            bad_splits.add([&](std::ostream& o) {
+                const char* const axis_names[] = {"x", "y", "z"};
+                std::string widest_axes;
+                for (int axis = 0; axis < 3; ++axis)
+                    if (spread[axis] == widest)
+                        widest_axes += std::string(widest_axes.empty() ? "" : " or ") + axis_names[axis];
+                o << "node " << index << " (first " << node.first << ", count " << node.count
+                  << "): its centroids spread " << rt_doctest::text(spread) << ", widest along " << widest_axes
+                  << ", and along it a centroid of the left child lies beyond one of the right";
+            });
         to_do.push_back(node.left);
         to_do.push_back(node.right);
     }
-    std::size_t not_once = 0;
-    for (int n : in_leaves)
-        not_once += n == 1 ? 0 : 1;
-    INFO("every item in exactly one leaf; leaves of 1 to leaf_size items");
-    CHECK(not_once == 0);
-    CHECK(bad_leaves == 0);
-    INFO("an inner node has more than leaf_size items: count / 2 go left (first, count / 2), the rest right");
-    CHECK(bad_children == 0);
-    INFO("each box encloses its items' boxes and its children's boxes");
-    CHECK(bad_boxes == 0);
-    INFO("the split is at the median along the longest axis of the centroids' box");
-    CHECK(bad_splits == 0);
+    problems not_once;
+    for (std::size_t i = 0; i < in_leaves.size(); ++i)
+        if (in_leaves[i] != 1)
+            not_once.add([&](std::ostream& o) { o << "item " << i << " is in " << in_leaves[i] << " leaves"; });
+    CHECK_MESSAGE(not_once.count == 0, "expected every item in exactly one leaf, found "
+                                           << not_once.count << " that are not; the first: " << not_once.first);
+    CHECK_MESSAGE(bad_leaves.count == 0, "expected every leaf to hold 1 to leaf_size items, found "
+                                             << bad_leaves.count << " that do not; the first: " << bad_leaves.first);
+    CHECK_MESSAGE(bad_children.count == 0,
+                  "expected every inner node to have more than leaf_size items, count / 2 of them to the left child "
+                  "(first, count / 2) and the rest to the right (first + count / 2, count - count / 2); found "
+                      << bad_children.count << " that do not; the first: " << bad_children.first);
+    CHECK_MESSAGE(bad_boxes.count == 0, "expected each node's box to enclose its items' boxes and its children's "
+                                        "boxes, found "
+                                            << bad_boxes.count << " that do not; the first: " << bad_boxes.first);
+    CHECK_MESSAGE(bad_splits.count == 0, "expected the split at the median along the longest axis of the centroids' "
+                                         "box (sort the node's items by their centroids along it), found "
+                                             << bad_splits.count << " that are not; the first: " << bad_splits.first);
     std::size_t unreached = 0;
     for (int n : reached)
         unreached += n == 1 ? 0 : 1;
-    CHECK(unreached == 0); // no node outside the tree
+    CHECK_MESSAGE(unreached == 0, "expected every node in the tree (reached from the root), found "
+                                      << unreached << " of " << g.nodes.size() << " that are not"); // no node outside the tree
 }
 
 } // namespace
@@ -308,8 +417,9 @@ TEST_CASE("the groups of small and degenerate lists: none, one item, items at th
     const std::vector<rt::group_item> single = rt::group_items(one);
     const rt::groups g = rt::build_groups(single, 4);
     check_groups(g, single, 4);
-    REQUIRE(g.nodes.size() == 1);
-    CHECK(g.nodes[0].leaf());
+    REQUIRE_MESSAGE(g.nodes.size() == 1, "expected one node (a leaf) for one item, found " << g.nodes.size());
+    CHECK_MESSAGE(g.nodes[0].leaf(), "expected the one node to be a leaf (left = right = 0), found children "
+                                         << g.nodes[0].left << " and " << g.nodes[0].right);
     // twenty spheres at one place: the centroids do not spread at all, the median still splits by count
     rt::scene same;
     for (int k = 0; k < 20; ++k)
@@ -348,8 +458,16 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
                         CAPTURE(rays[k]);
                         CAPTURE(from_list);
                         CAPTURE(from_groups);
-                        CHECK(a == b); // the first difference, in full
-                        CHECK(same_hit(s, from_list, from_groups));
+                        // the first difference, in full
+                        CHECK_MESSAGE(a == b, "expected " << std::string(a ? "a hit (the list's)" : "no hit")
+                                                          << ", found " << std::string(b ? "a hit" : "none"));
+                        CHECK_MESSAGE(same_hit(s, from_list, from_groups),
+                                      std::string(a && b ? "expected the list's closest hit (from_list), found "
+                                                           "another (from_groups): the nearest hit, and at an equal t "
+                                                           "the later item (from_list is your closest_hit_list: if "
+                                                           "stage04_triangle's cases fail too, fix it first)"
+                                                         : "expected the same records: on a miss closest_hit_groups "
+                                                           "leaves the record as it was (t = -42)"));
                     }
                     ++different;
                 }
@@ -357,7 +475,8 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
             MESSAGE("seed " << seed << ", leaf size " << leaf_size << ": " << rays.size() << " rays, " << hits
                             << " hits, " << different << " differ from the list");
             CHECK(hits > 100);
-            CHECK(different == 0);
+            CHECK_MESSAGE(different == 0, "expected closest_hit_groups to answer as closest_hit_list on all "
+                                              << rays.size() << " rays, found " << different << " that differ");
         }
     }
 }
@@ -375,31 +494,45 @@ TEST_CASE("a ray that misses the root box tests no item, and along a row of sphe
     };
     rt::hit_record rec;
     rec.t = -42;
-    INFO("above the row, parallel to it: the root box is missed, no item is tested");
-    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 5, 0), vec3(1, 0, 0)}, 0, inf, rec, counting));
-    CHECK(tests == 0);
-    CHECK(rec.t == -42);
-    INFO("across the row between two spheres (x = 1.5): inside the root box, outside every leaf's");
-    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(1.5f, -10, 0), vec3(0, 1, 0)}, 0, inf, rec, counting));
-    CHECK(tests == 0);
-    INFO("along the row from the left: the nearer child first, so sphere 0 is hit first and every other box, "
-         "which starts beyond that hit, is skipped: one item tested");
-    tests = 0;
-    REQUIRE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, counting));
-    CHECK(rec.shape == 0);
-    CHECK(rec.t == 9);
-    CHECK(tests == 1);
-    INFO("along the row from the right: sphere 63 first, one item tested");
-    tests = 0;
-    REQUIRE(rt::closest_hit_groups(g, rt::ray{vec3(200, 0, 0), vec3(-1, 0, 0)}, 0, inf, rec, counting));
-    CHECK(rec.shape == 63);
-    CHECK(rec.t == 200 - 189 - 1);
-    CHECK(tests == 1);
+    {
+        INFO("above the row, parallel to it: the root box is missed, no item is tested");
+        CHECK_FALSE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 5, 0), vec3(1, 0, 0)}, 0, inf, rec, counting),
+                            "expected no hit, found shape " << rec.shape << " at t = " << rec.t);
+        CHECK_MESSAGE(tests == 0, "expected no item tested, found " << tests);
+        CHECK_MESSAGE(rec.t == -42, "expected the record untouched on a miss (t = -42), found t = " << rec.t);
+    }
+    {
+        INFO("across the row between two spheres (x = 1.5): inside the root box, outside every leaf's");
+        CHECK_FALSE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(1.5f, -10, 0), vec3(0, 1, 0)}, 0, inf, rec, counting),
+                            "expected no hit, found shape " << rec.shape << " at t = " << rec.t);
+        CHECK_MESSAGE(tests == 0, "expected no item tested (test an item only when its leaf's box is hit), found "
+                                      << tests);
+    }
+    {
+        INFO("along the row from the left: the nearer child first, so sphere 0 is hit first and every other box, "
+             "which starts beyond that hit, is skipped: one item tested");
+        tests = 0;
+        REQUIRE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, counting),
+                        "expected a hit on sphere 0 at t = 9, found none");
+        CHECK(rec.shape == 0);
+        CHECK(rec.t == 9);
+        CHECK_MESSAGE(tests == 1, "expected 1 item tested, found " << tests);
+    }
+    {
+        INFO("along the row from the right: sphere 63 first, one item tested");
+        tests = 0;
+        REQUIRE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(200, 0, 0), vec3(-1, 0, 0)}, 0, inf, rec, counting),
+                        "expected a hit on sphere 63 at t = 10, found none");
+        CHECK(rec.shape == 63);
+        CHECK(rec.t == 200 - 189 - 1);
+        CHECK_MESSAGE(tests == 1, "expected 1 item tested, found " << tests);
+    }
     INFO("an empty scene: no groups, no hit");
     const rt::groups none = rt::build_groups({}, 4);
     tests = 0;
-    CHECK_FALSE(rt::closest_hit_groups(none, rt::ray{vec3(0), vec3(1, 0, 0)}, 0, inf, rec, counting));
-    CHECK(tests == 0);
+    CHECK_FALSE_MESSAGE(rt::closest_hit_groups(none, rt::ray{vec3(0), vec3(1, 0, 0)}, 0, inf, rec, counting),
+                        "expected no hit (there are no nodes), found shape " << rec.shape << " at t = " << rec.t);
+    CHECK_MESSAGE(tests == 0, "expected no item tested, found " << tests);
 }
 
 TEST_CASE("the closest hit over groups built by hand: nearer child first, farther boxes skipped, a tie to the later item")
@@ -434,11 +567,15 @@ TEST_CASE("the closest hit over groups built by hand: nearer child first, farthe
                                      "and its hit at t = 9 ends the search; "
                                          << tested.size() << " item(s) tested");
 
-    INFO("tmax before every sphere: nothing hit, the record untouched");
-    tested.clear();
-    rec.t = -42;
-    CHECK_FALSE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, 5, rec, recording));
-    CHECK(rec.t == -42);
+    {
+        INFO("tmax before every sphere: nothing hit, the record untouched");
+        tested.clear();
+        rec.t = -42;
+        CHECK_FALSE_MESSAGE(rt::closest_hit_groups(g, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, 5, rec, recording),
+                            "expected no hit with tmax = 5 (the nearest sphere is at t = 9), found shape "
+                                << rec.shape << " at t = " << rec.t);
+        CHECK_MESSAGE(rec.t == -42, "expected the record untouched on a miss (t = -42), found t = " << rec.t);
+    }
 
     INFO("two items at the same t (the same sphere twice, items 1 and 2): the later item in scene order wins");
     rt::scene twice;
@@ -454,7 +591,8 @@ TEST_CASE("the closest hit over groups built by hand: nearer child first, farthe
     auto hit_twice = [&](std::uint32_t i, const rt::ray& r, real tmin, real tmax, rt::hit_record& out) {
         return rt::hit_group_item(twice, h.items[i], r, tmin, tmax, out);
     };
-    REQUIRE(rt::closest_hit_groups(h, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, hit_twice));
+    REQUIRE_MESSAGE(rt::closest_hit_groups(h, rt::ray{vec3(-10, 0, 0), vec3(1, 0, 0)}, 0, inf, rec, hit_twice),
+                    "expected a hit at t = 9 (items 1 and 2, the same sphere), found none");
     CHECK(rec.t == 9);
     CHECK_MESSAGE(rec.shape == 2, "expected item 2 (the later of two at t = 9), found shape " << rec.shape);
 }

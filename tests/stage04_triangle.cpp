@@ -213,20 +213,33 @@ TEST_CASE("the closest hit of the list: the nearest shape, its index, and at an 
     s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 4});
     const rt::ray down_z{{0, 0, 0}, {0, 0, -1}};
     rt::hit_record rec;
-    REQUIRE(rt::closest_hit_list(s, down_z, 0, rt::infinity, rec));
-    CHECK(rec.shape == 3);
-    CHECK(rec.material == 4);
-    CHECK(near(rec.t, 2));
+    {
+        INFO("the ray from the origin down -z meets shapes 2 and 3 (the same triangle twice, z = -2) at t = 2, "
+             "shape 1 (the sphere at z = -5) at t = 4 and shape 0 (z = -10) at t = 9: expected the closest, and at an "
+             "equal t the later shape, 3 (material 4)");
+        REQUIRE_MESSAGE(rt::closest_hit_list(s, down_z, 0, rt::infinity, rec), "expected a hit, found none");
+        CHECK(rec.shape == 3);
+        CHECK(rec.material == 4);
+        CHECK_MESSAGE(near(rec.t, 2), "expected t = 2, found " << rec.t);
+    }
     // beyond the triangles: the near sphere, whose surface is at z = -4
-    REQUIRE(rt::closest_hit_list(s, down_z, 3, rt::infinity, rec));
-    CHECK(rec.shape == 1);
-    CHECK(near(rec.t, 4));
-    CHECK(rec.material == 2);
-    CHECK(near(rec.point, vec3(0, 0, -4)));
-    CHECK(near(rec.geometric_normal, vec3(0, 0, 1)));
+    {
+        INFO("tmin = 3, beyond the triangles at t = 2: expected the sphere at z = -5 (shape 1, material 2), entered at "
+             "t = 4, at (0, 0, -4) with the normal (0, 0, 1)");
+        REQUIRE_MESSAGE(rt::closest_hit_list(s, down_z, 3, rt::infinity, rec), "expected a hit, found none");
+        CHECK(rec.shape == 1);
+        CHECK_MESSAGE(near(rec.t, 4), "expected t = 4, found " << rec.t);
+        CHECK(rec.material == 2);
+        CHECK_MESSAGE(near(rec.point, vec3(0, 0, -4)), "expected the point (0, 0, -4), found " << rec.point);
+        CHECK_MESSAGE(near(rec.geometric_normal, vec3(0, 0, 1)),
+                      "expected the geometric normal (0, 0, 1), found " << rec.geometric_normal);
+    }
     // a tmax before everything: no hit
-    CHECK_FALSE(rt::closest_hit_list(s, down_z, 0, real(1.5), rec));
-    CHECK_FALSE(rt::any_hit_list(s, down_z, 0, real(1.5)));
+    CHECK_FALSE_MESSAGE(rt::closest_hit_list(s, down_z, 0, real(1.5), rec),
+                        "expected no hit with tmax = 1.5 (the nearest shape is at t = 2), found shape "
+                            << rec.shape << " at t = " << rec.t);
+    CHECK_FALSE_MESSAGE(rt::any_hit_list(s, down_z, 0, real(1.5)),
+                        "expected any_hit_list false with tmax = 1.5 (the nearest shape is at t = 2), found true");
 }
 
 TEST_CASE("many copies of one triangle: the list keeps the last copy")
@@ -309,7 +322,7 @@ TEST_CASE("the list tests every shape with the hit function it is given, once ea
     REQUIRE(calls.count == 4);
     CHECK(asked == "0, 1, 2, 3"); // in scene order, each once
     INFO("the hit function reports shapes 0..3 hit at t = 3, 1, 2, 5: expected the closest, shape 1 at t = 1");
-    REQUIRE(hit);
+    REQUIRE_MESSAGE(hit, "expected closest_hit_list to return true, found false");
     CHECK(rec.shape == 1u);
     CHECK(rec.t == 1);
     CHECK(rec.material == 1);
