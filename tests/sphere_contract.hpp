@@ -57,7 +57,9 @@ inline void check_closed_form_hits(const method& m)
         CHECK(rec.point == rt::vec3(0, 0, -4));
         CHECK(rec.normal == rt::vec3(0, 0, 1));
         CHECK(rec.geometric_normal == rt::vec3(0, 0, 1));
-        CHECK(rec.front_face);
+        CHECK_MESSAGE(rec.front_face, "expected front_face = true: the origin is outside, and the ray enters the "
+                                      "sphere at t = "
+                                          << double(nearer) << "; found the back face");
     }
     // passing 0.6 R from the centre: t = 5 - sqrt(1 - 0.36) = 4.2, normal (0.6, 0, 0.8)
     const rt::ray off{rt::vec3(real(0.6), 0, 0), rt::vec3(0, 0, -1)};

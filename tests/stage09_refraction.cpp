@@ -186,10 +186,16 @@ TEST_CASE("a ray through a glass slab leaves parallel to itself, shifted by h si
         const rt::vec3 d = incoming(theta);
         const rt::vec3 entry(0, 0, h);
         rt::vec3 inside(0), leaving(0);
-        REQUIRE(rt::refract(d, up, 1, eta_glass, inside));
-        const rt::vec3 exit = entry + inside * (-h / inside.z); // where it reaches z = 0
-        REQUIRE(rt::refract(inside, up, eta_glass, 1, leaving)); // the bottom's normal faces the ray: +z
         CAPTURE(degrees);
+        REQUIRE_MESSAGE(rt::refract(d, up, 1, eta_glass, inside),
+                        "expected a refracted ray from air into glass (1 -> 1.5) at " << degrees
+                            << " degrees (into the denser medium there always is one), found total internal "
+                               "reflection (false)");
+        const rt::vec3 exit = entry + inside * (-h / inside.z); // where it reaches z = 0
+        REQUIRE_MESSAGE(rt::refract(inside, up, eta_glass, 1, leaving), // the bottom's normal faces the ray: +z
+                        "expected a refracted ray out of the glass (1.5 -> 1) along " << inside
+                            << ": it meets the bottom at the angle it was refracted to, below the critical angle "
+                               "41.8 degrees; found total internal reflection (false)");
         CHECK_MESSAGE(glm::length(leaving - d) < 1e-6, "expected the ray to leave parallel to d = " << d << ", found "
                                                                                                    << leaving);
         const double phi = std::asin(std::sin(theta) / double(eta_glass));
