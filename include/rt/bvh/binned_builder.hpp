@@ -191,6 +191,11 @@ public:
         const real area = half_area(box);
         if (n <= 1 || depth >= options_.max_depth)
             return leaf(begin, n, box, area);
+        // One leaf test: no split costs less when C_trav >= C_isect (split
+        // cost >= C_trav, leaf cost C_isect), so the bins are not filled
+        if (n <= options_.primitives_per_test && n <= options_.max_leaf_size && area > 0 &&
+            options_.traversal_cost >= options_.intersection_cost)
+            return leaf(begin, n, box, area);
 
         aabb centroids;
         if (known_centroids != nullptr)
