@@ -145,7 +145,7 @@ bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
         return false;
     bool same = a.stats().depth == b.stats().depth && a.stats().references == b.stats().references;
     for (std::size_t i = 0; i < na.size(); ++i)
-        for (int c = 0; c < 4; ++c) {
+        for (int c = 0; c < rt::bvh_width; ++c) {
             same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
             for (int row = 0; row < 6; ++row)
                 same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];

@@ -79,12 +79,12 @@ public:
     /// pieces are references to the same primitive, so a ray gets the same
     /// hit whichever it meets. A node where the overlap is small, or whose
     /// subtree is small, is handed to build(), in place at the end of items_.
-    /// `known`: the references' bounds (side_bounds), if the caller has them.
+    /// `known_bounds`: the references' bounds (side_bounds), if the caller has them.
     binary_child build_spatial(std::vector<build_item> refs, int depth, real root_area, std::size_t& budget,
-                               const side_bounds* known = nullptr)
+                               const side_bounds* known_bounds = nullptr)
     {
         const std::size_t n = refs.size();
-        const side_bounds bounds = known != nullptr ? *known : bounds_of(refs);
+        const side_bounds bounds = known_bounds != nullptr ? *known_bounds : bounds_of(refs);
         const aabb& box = bounds.box;
         const aabb& centroids = bounds.centroids;
         const auto hand_over = [&](const split* known = nullptr) {
@@ -108,9 +108,7 @@ public:
         const split object = find_split(refs.data(), n, centroids);
         if (object.axis < 0)
             return hand_over(&object);
-        aabb overlap;
-        overlap.lo = glm::max(object.left.lo, object.right.lo);
-        overlap.hi = glm::min(object.left.hi, object.right.hi);
+        const aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
         if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
             return hand_over(&object);
         const spatial_split cut = find_spatial_split(refs, box, wide);
@@ -119,19 +117,19 @@ public:
         if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
             parts = to_sides(refs, [&](const build_item& r, sides& out) {
                 if (r.box.hi[cut.axis] <= cut.plane) {
-                    out.add_left(r);
+                    out.left.push_back(r);
                 } else if (r.box.lo[cut.axis] >= cut.plane) {
-                    out.add_right(r);
+                    out.right.push_back(r);
                 } else {
                     const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
                     const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
                     if (below.empty()) {
-                        out.add_right(r);
+                        out.right.push_back(r);
                     } else if (above.empty()) {
-                        out.add_left(r);
+                        out.left.push_back(r);
                     } else {
-                        out.add_left(build_item{below, below.center(), r.index});
-                        out.add_right(build_item{above, above.center(), r.index});
+                        out.left.push_back(build_item{below, below.center(), r.index});
+                        out.right.push_back(build_item{above, above.center(), r.index});
                     }
                 }
             });
@@ -145,9 +143,9 @@ public:
         if (parts.left.empty() && parts.right.empty()) // the object split, as build() makes it
             parts = to_sides(refs, [&](const build_item& r, sides& out) {
                 if (object.left_of(r.centroid))
-                    out.add_left(r);
+                    out.left.push_back(r);
                 else
-                    out.add_right(r);
+                    out.right.push_back(r);
             });
         std::vector<build_item>().swap(refs);
         std::vector<build_item> left = std::move(parts.left), right = std::move(parts.right);
@@ -326,12 +324,9 @@ private:
         return bins.best(n, options_.primitives_per_test);
     }
 
-    /// A node's references sent to its two children (build_spatial), with
-    /// the boxes of each side.
+    /// A node's references sent to its two children (build_spatial).
     struct sides {
         std::vector<build_item> left, right;
-        void add_left(const build_item& r) { left.push_back(r); }
-        void add_right(const build_item& r) { right.push_back(r); }
     };
 
     /// The bounds of a node's references, in one pass (side_gatherer, in

@@ -9,7 +9,7 @@
 //
 // The folder, one concept per header, in the order a build and a ray use them:
 //   packed.hpp          a primitive as traversal reads it; the flat list
-//   layout.hpp          4-wide nodes, four-triangle leaf blocks
+//   layout.hpp          wide nodes (8 children with AVX2, else 4), leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
@@ -17,8 +17,9 @@
 //   build_tasks.hpp     the build's threads: subtrees offered to idle ones
 //   parallel_fill.hpp   large arrays written on the build's threads
 //   binned_builder.hpp  the binned SAH build (Wald 2007), on threads
-//   wide_collapse.hpp   the binary tree made 4-wide
-//   node_test.hpp       a ray against a node's four boxes; nearest child first
+//   wide_collapse.hpp   the binary tree made wide
+//   node_test.hpp       a ray against a node's boxes, all at once
+//   descend.hpp         the child a ray enters next, the others pushed
 //   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
 //   bvh.hpp             this file: build, then closest() and any()
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
@@ -33,10 +34,9 @@
 // (no allocation per ray) and skips an entry whose distance is beyond the
 // closest hit found meanwhile; any() returns at the first hit and pushes
 // children unsorted (their order cannot change its answer). The next child is
-// chosen by one jump on the 4-bit mask of children met, a switch over the 15
-// masks whose cases know their children at compile time (descend): on
-// coherent rays the jump is predicted and the next node loads before the box
-// test has finished.
+// chosen by one jump on the mask of children met, whose cases know their
+// children at compile time (descend.hpp): on coherent rays the jump is
+// predicted and the next node loads before the box test has finished.
 #pragma once
 
 #include <algorithm>
@@ -54,6 +54,7 @@
 #include "binned_builder.hpp"
 #include "build_tasks.hpp"
 #include "build_options.hpp"
+#include "descend.hpp"
 #include "layout.hpp"
 #include "leaf_test.hpp"
 #include "node_test.hpp"
@@ -176,10 +177,10 @@ public:
     /// Whether the node test runs in SSE registers (x86-64 and rt::real = float).
     static constexpr bool uses_sse = detail::bvh_uses_sse;
 
-    /// The deepest binary tree built; a 4-wide node pushes at most 3 children,
-    /// so the traversal stack needs 3 entries per level.
+    /// The deepest binary tree built; a node pushes at most bvh_width - 1
+    /// children, so the traversal stack needs that many entries per level.
     static constexpr int max_depth = 60;
-    static constexpr int stack_size = 3 * max_depth + 4;
+    static constexpr int stack_size = (bvh_width - 1) * max_depth + bvh_width;
 
 private:
     /// Each leaf's primitives as blocks of four (layout.hpp), in the order the
@@ -196,7 +197,7 @@ private:
         leaves.reserve(stats_.leaves);
         std::size_t block_count = 0;
         for (bvh_node& node : nodes_)
-            for (int c = 0; c < 4; ++c) {
+            for (int c = 0; c < bvh_width; ++c) {
                 if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
                     continue;
                 leaves.push_back(leaf_blocks{node.child[c] & ~leaf_flag, node.count[c], std::uint32_t(block_count)});
@@ -229,56 +230,6 @@ private:
             4096);
     }
 
-    /// A child waiting on the traversal stack, with the distance where the ray enters it.
-    struct entry {
-        std::uint32_t child, count;
-        real tnear;
-    };
-
-    /// The children met (bit c of `mask`, known at compile time) of `node`:
-    /// enter one, push the others. Any hit: the first met is entered and the
-    /// others pushed unsorted, since any hit ends the search whatever the
-    /// order (sorting them costs shadow rays more than it saves:
-    /// docs/performance.md, experiment 6). Closest hit: nearest first; one child is entered,
-    /// two are ordered by a select, not a branch (their order is a coin toss on
-    /// incoherent rays), three or four are ranked by order_children, without a
-    /// branch either: three entries are always written and top moves past the
-    /// n - 1 met.
-    template <int mask, bool any_hit>
-    static void descend(const bvh_node& node, const real tnear[4], entry* stack, int& top, std::uint32_t& child,
-                        std::uint32_t& count)
-    {
-        constexpr int first = detail::lowest_bit[mask];
-        constexpr int rest = mask & (mask - 1);
-        if constexpr (rest == 0) {
-            child = node.child[first];
-            count = node.count[first];
-        } else if constexpr (any_hit) {
-            for (int c = 0; c < 4; ++c)
-                if (c != first && (mask & (1 << c)))
-                    stack[top++] = entry{node.child[c], node.count[c], tnear[c]};
-            child = node.child[first];
-            count = node.count[first];
-        } else if constexpr ((rest & (rest - 1)) == 0) {
-            constexpr int second = detail::lowest_bit[rest];
-            const bool swap = tnear[second] < tnear[first];
-            const int near_child = swap ? second : first, far_child = swap ? first : second;
-            stack[top++] = entry{node.child[far_child], node.count[far_child], tnear[far_child]};
-            child = node.child[near_child];
-            count = node.count[near_child];
-        } else {
-            int order[4];
-            const int n = detail::order_children(mask, tnear, order);
-            for (int i = 3; i > 0; --i) {
-                const int c = order[i];
-                stack[top] = entry{node.child[c], node.count[c], tnear[c]};
-                top += i < n ? 1 : 0;
-            }
-            child = node.child[order[0]];
-            count = node.count[order[0]];
-        }
-    }
-
     template <bool any_hit, bool scalar>
     bool traverse(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
@@ -287,7 +238,7 @@ private:
         const detail::node_ray nr = detail::make_node_ray(r);
         const watertight_ray wr = make_watertight_ray(r);
         const detail::leaf_ray lr = detail::make_leaf_ray(wr);
-        entry stack[stack_size];
+        detail::traversal_stack<stack_size> stack;
         int top = 0;
         bool found = false;
         real closest_t = tmax; // a hit must have t <= closest_t: tmax, then the closest hit so far
@@ -295,31 +246,12 @@ private:
         for (;;) {
             if (!(child & leaf_flag)) {
                 const bvh_node& node = nodes_[child];
-                real tnear[4];
+                alignas(32) real tnear[bvh_width];
                 const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
                                         : detail::intersect_children(node, nr, tmin, closest_t, tnear);
-                // One indirect branch on the mask (a jump table): each case
-                // knows at compile time which children it enters, so on
-                // coherent rays, where the branch is predicted, the processor
-                // starts loading the next node before the box test is done,
-                // and on incoherent rays a visit costs at most one misprediction.
-                switch (mask) {
-                case 0: break;
-                case 1: descend<1, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 2: descend<2, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 3: descend<3, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 4: descend<4, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 5: descend<5, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 6: descend<6, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 7: descend<7, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 8: descend<8, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 9: descend<9, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 10: descend<10, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 11: descend<11, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 12: descend<12, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 13: descend<13, any_hit>(node, tnear, stack, top, child, count); continue;
-                case 14: descend<14, any_hit>(node, tnear, stack, top, child, count); continue;
-                default: descend<15, any_hit>(node, tnear, stack, top, child, count); continue;
+                if (mask != 0) { // one jump on the mask (descend.hpp)
+                    detail::descend<any_hit>(mask, node, tnear, stack, top, child, count);
+                    continue;
                 }
             } else {
                 // a leaf: its blocks of four, each tested at once
@@ -377,10 +309,10 @@ private:
             for (;;) {
                 if (top == 0)
                     return found;
-                const entry& e = stack[--top];
-                if (e.tnear <= cut) {
-                    child = e.child;
-                    count = e.count;
+                --top;
+                if (stack.t[top] <= cut) {
+                    child = stack.child[top];
+                    count = stack.count[top];
                     break;
                 }
             }

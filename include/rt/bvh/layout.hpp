@@ -1,12 +1,14 @@
-// bvh/layout.hpp - how the tree sits in memory: 4-wide nodes and leaf blocks.
+// bvh/layout.hpp - how the tree sits in memory: wide nodes and leaf blocks.
 //
 // Why this layout (the measurements are in docs/performance.md, experiment 6):
-//  - A node holds the boxes of its four children, not its own box (4-wide BVHs:
+//  - A node holds the boxes of its children, not its own box (4-wide BVHs:
 //    Wald, Benthin, Boulos 2008; Dammertz, Hanika, Keller 2008): one visit tests
-//    four boxes, and a ray visits about half the nodes of a binary tree.
+//    all its boxes at once, and a ray visits far fewer nodes than in a binary
+//    tree. Eight children with AVX2 (one 256-bit register per plane: a third
+//    fewer visits than four), four otherwise (one SSE register per plane).
 //  - The boxes are stored plane by plane, bounds[lo x / hi x / lo y / ...][child],
-//    so one 4-wide instruction treats the same plane of all four children.
-//    128 bytes in float: two cache lines, aligned.
+//    so one SIMD instruction treats the same plane of all the children.
+//    128 bytes in float for four children, 256 for eight: whole cache lines.
 //  - A child is an inner node (its index) or a leaf (leaf_flag | its first
 //    block, and a count): leaves cost no node of their own. Nodes are stored
 //    flat, depth first.
@@ -29,7 +31,12 @@
 #include "../vec.hpp"
 #include "packed.hpp"
 
+#include "simd_begin.hpp" // RT_BVH_AVX2, until simd_end.hpp
+
 namespace rt {
+
+/// Children per node: 8 where AVX2 is there (RT_BVH_AVX2), else 4.
+constexpr int bvh_width = RT_BVH_AVX2 ? 8 : 4;
 
 /// Up to four primitives of one leaf as the SIMD leaf test reads them (see the
 /// top of this file): the triangles' corners as a structure of arrays,
@@ -81,17 +88,19 @@ inline triangle_block pack_triangle_block(const packed_primitive* prims, std::si
     return pack_triangle_block(lanes, n);
 }
 
-/// One 4-wide node (see the top of this file): the boxes of up to four
-/// children, plane by plane, and their references. 128 bytes in float.
+/// One node (see the top of this file): the boxes of up to bvh_width
+/// children, plane by plane, and their references.
 struct alignas(64) bvh_node {
     /// bounds[2 k][c] = lo of child c on axis k, bounds[2 k + 1][c] = hi; an
     /// unused child has the empty box lo = +inf, hi = -inf, which no ray meets.
-    real bounds[6][4];
-    std::uint32_t child[4];  ///< an inner child's node index, or leaf_flag | its first primitive
-    std::uint32_t count[4];  ///< a leaf's number of primitives (0 for inner children)
+    real bounds[6][bvh_width];
+    std::uint32_t child[bvh_width];  ///< an inner child's node index, or leaf_flag | its first primitive
+    std::uint32_t count[bvh_width];  ///< a leaf's number of primitives (0 for inner children)
 };
 
 /// Set in bvh_node::child for a leaf.
 constexpr std::uint32_t leaf_flag = 0x80000000u;
 
 } // namespace rt
+
+#include "simd_end.hpp"

@@ -1,14 +1,11 @@
-// bvh/node_test.hpp - a ray against the four boxes of a node, and the order
-// in which the children met are entered.
+// bvh/node_test.hpp - a ray against the boxes of a node's children.
 //
-//  - Per ray, the reciprocal direction and, per axis, which plane row of a node
-//    is met first are computed once (node_ray), so a box test is a subtraction
-//    and a multiplication per plane, no division and no branch: the robust
-//    slab test of box_test.hpp, four boxes at once in SSE where it is there.
-//  - Closest hit visits the children nearest first. Two are ordered by a
-//    select, three or four by ranking their distances in SIMD (order_children),
-//    without a branch: on incoherent rays the order is a coin toss that a
-//    branch would mispredict (docs/performance.md, experiment 6).
+// Per ray, the reciprocal direction and, per axis, which plane row of a node
+// is met first are computed once (node_ray), so a box test is a subtraction
+// and a multiplication per plane, no division and no branch: the robust slab
+// test of box_test.hpp, the eight boxes of a node at once in AVX2, or its four
+// in SSE, or one at a time (the reference the tests compare them with).
+// Which of the children met a ray enters, and in what order: descend.hpp.
 #pragma once
 
 #include <cstddef>
@@ -20,7 +17,7 @@
 #include "box_test.hpp"
 #include "layout.hpp"
 
-#include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX and the intrinsics, until simd_end.hpp
+#include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
 
 namespace rt {
 namespace detail {
@@ -39,7 +36,10 @@ struct node_ray {
     /// hi) and the other, as byte offsets into a node: no index arithmetic per visit.
     std::size_t near_offset[3];
     std::size_t far_offset[3];
-#if RT_BVH_SSE
+#if RT_BVH_AVX2
+    __m256 origin8[3];   ///< the origin's k-th coordinate in all eight lanes
+    __m256 inv_dir8[3];  ///< 1/d_k in all eight lanes
+#elif RT_BVH_SSE
     __m128 origin4[3];   ///< the origin's k-th coordinate in all four lanes
     __m128 inv_dir4[3];  ///< 1/d_k in all four lanes
 #endif
@@ -60,7 +60,10 @@ inline node_ray make_node_ray(const ray& r)
         n.inv_dir[k] = b.inv_dir[k];
         n.near_offset[k] = std::size_t(2 * k + b.negative[k]) * sizeof(bvh_node::bounds[0]);
         n.far_offset[k] = std::size_t(2 * k + 1 - b.negative[k]) * sizeof(bvh_node::bounds[0]);
-#if RT_BVH_SSE
+#if RT_BVH_AVX2
+        n.origin8[k] = _mm256_set1_ps(float(b.origin[k]));
+        n.inv_dir8[k] = _mm256_set1_ps(float(b.inv_dir[k]));
+#elif RT_BVH_SSE
         n.origin4[k] = _mm_set1_ps(float(b.origin[k]));
         n.inv_dir4[k] = _mm_set1_ps(float(b.inv_dir[k]));
 #endif
@@ -68,13 +71,14 @@ inline node_ray make_node_ray(const ray& r)
     return n;
 }
 
-/// The slab test of hit_box for the four children of `node` at once: bit c of
-/// the result is set when child c is met in [tmin, tmax], and tnear[c] is then
+/// The slab test of hit_box for the children of `node` at once: bit c of the
+/// result is set when child c is met in [tmin, tmax], and tnear[c] is then
 /// where the ray enters it. One value at a time.
-inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, real tmin, real tmax, real tnear[4])
+inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, real tmin, real tmax,
+                                     real tnear[bvh_width])
 {
     int mask = 0;
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < bvh_width; ++c) {
         real t0 = tmin, t1 = tmax;
         for (int k = 0; k < 3; ++k) {
             const real t_near = (bounds_row(node, r.near_offset[k])[c] - r.origin[k]) * r.inv_dir[k];
@@ -88,7 +92,23 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
     return mask;
 }
 
-#if RT_BVH_SSE
+#if RT_BVH_AVX2
+/// The same test with AVX, one child per lane, as intersect_children_sse.
+inline int intersect_children_avx2(const bvh_node& node, const node_ray& r, float tmin, float tmax, float tnear[8])
+{
+    auto row = [&node](std::size_t offset) { return _mm256_load_ps(bounds_row(node, offset)); };
+    const __m256 near_x = _mm256_mul_ps(_mm256_sub_ps(row(r.near_offset[0]), r.origin8[0]), r.inv_dir8[0]);
+    const __m256 far_x = _mm256_mul_ps(_mm256_sub_ps(row(r.far_offset[0]), r.origin8[0]), r.inv_dir8[0]);
+    const __m256 near_y = _mm256_mul_ps(_mm256_sub_ps(row(r.near_offset[1]), r.origin8[1]), r.inv_dir8[1]);
+    const __m256 far_y = _mm256_mul_ps(_mm256_sub_ps(row(r.far_offset[1]), r.origin8[1]), r.inv_dir8[1]);
+    const __m256 near_z = _mm256_mul_ps(_mm256_sub_ps(row(r.near_offset[2]), r.origin8[2]), r.inv_dir8[2]);
+    const __m256 far_z = _mm256_mul_ps(_mm256_sub_ps(row(r.far_offset[2]), r.origin8[2]), r.inv_dir8[2]);
+    const __m256 t0 = _mm256_max_ps(near_z, _mm256_max_ps(near_y, _mm256_max_ps(near_x, _mm256_set1_ps(tmin))));
+    const __m256 t1 = _mm256_min_ps(far_z, _mm256_min_ps(far_y, _mm256_min_ps(far_x, _mm256_set1_ps(tmax))));
+    _mm256_store_ps(tnear, t0);
+    return _mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(float(slab_far_factor))), _CMP_LE_OQ));
+}
+#elif RT_BVH_SSE
 /// The same test with SSE, one child per lane. _mm_max_ps(a, b) is exactly
 /// a > b ? a : b and _mm_min_ps(a, b) is a < b ? a : b, NaN included, so every
 /// lane computes bit for bit what intersect_children_scalar computes.
@@ -109,67 +129,16 @@ inline int intersect_children_sse(const bvh_node& node, const node_ray& r, float
 }
 #endif
 
-inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin, real tmax, real tnear[4])
+/// tnear must be aligned to 32 bytes (the AVX2 test stores it whole).
+inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin, real tmax, real tnear[bvh_width])
 {
-#if RT_BVH_SSE
+#if RT_BVH_AVX2
+    return intersect_children_avx2(node, r, tmin, tmax, tnear);
+#elif RT_BVH_SSE
     return intersect_children_sse(node, r, tmin, tmax, tnear);
 #else
     return intersect_children_scalar(node, r, tmin, tmax, tnear);
 #endif
-}
-
-/// The lowest set bit of a 4-bit mask (lowest_bit[0] is 0, never used).
-constexpr int lowest_bit[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
-
-/// The children met by a ray, nearest first, without a branch (closest hit,
-/// see the top of this file): order[0 .. n-1] are the lanes of `mask` by
-/// increasing tnear, order[n .. 3] the others; returns n, the number met.
-///
-/// Each lane gets a key, the bits of its tnear as an integer with the lane
-/// number in the two lowest bits (a lane not met gets the largest key). For
-/// floats >= 0 the integer order is the float order, and the lane bits make
-/// the keys distinct, so a lane's rank (how many keys are smaller) is a
-/// permutation of 0 ... 3; order[rank] = lane. Dropping two bits of tnear may
-/// reorder children whose entry distances are within 3 ulps, which changes
-/// no result: the closest hit is decided by replaces(), not by the order of
-/// the visits. (With a negative tmin a negative tnear sorts first: the order
-/// is then only approximate, and the result again the same.)
-inline int order_children(int mask, const real tnear[4], int order[4])
-{
-#if RT_BVH_SSE
-    const __m128i lane = _mm_set_epi32(3, 2, 1, 0);
-    const __m128i bit = _mm_set_epi32(8, 4, 2, 1);
-    const __m128i met = _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(mask), bit), bit);
-    const __m128i t = _mm_castps_si128(_mm_loadu_ps(tnear));
-    const __m128i bits = _mm_or_si128(_mm_and_si128(met, t), _mm_andnot_si128(met, _mm_set1_epi32(0x7fffffff)));
-    const __m128i keys = _mm_andnot_si128(_mm_set1_epi32(3), bits); // the two low bits cleared
-    const __m128i k = _mm_or_si128(keys, lane);
-    // rank = how many of the other three keys are smaller: compare with the
-    // keys rotated by one, two and three lanes (cmpgt gives -1 where true)
-    const __m128i r1 = _mm_cmpgt_epi32(k, _mm_shuffle_epi32(k, _MM_SHUFFLE(0, 3, 2, 1)));
-    const __m128i r2 = _mm_cmpgt_epi32(k, _mm_shuffle_epi32(k, _MM_SHUFFLE(1, 0, 3, 2)));
-    const __m128i r3 = _mm_cmpgt_epi32(k, _mm_shuffle_epi32(k, _MM_SHUFFLE(2, 1, 0, 3)));
-    const __m128i rank = _mm_sub_epi32(_mm_setzero_si128(), _mm_add_epi32(_mm_add_epi32(r1, r2), r3));
-    alignas(16) std::int32_t ranks[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(ranks), rank);
-#else
-    std::int32_t keys[4], ranks[4];
-    for (int c = 0; c < 4; ++c) {
-        std::uint32_t bits = 0x7fffffffu;
-        if (mask & (1 << c)) {
-            const float t = float(tnear[c]);
-            std::memcpy(&bits, &t, sizeof bits);
-        }
-        bits = (bits & ~3u) | std::uint32_t(c);
-        keys[c] = std::int32_t(bits);
-    }
-    for (int c = 0; c < 4; ++c)
-        ranks[c] = (keys[(c + 1) & 3] < keys[c]) + (keys[(c + 2) & 3] < keys[c]) + (keys[(c + 3) & 3] < keys[c]);
-#endif
-    for (int c = 0; c < 4; ++c)
-        order[ranks[c]] = c;
-    static constexpr int bits_set[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
-    return bits_set[mask & 15];
 }
 
 } // namespace detail

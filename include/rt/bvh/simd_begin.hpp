@@ -1,7 +1,7 @@
 // bvh/simd_begin.hpp - opens the SIMD section of a fast-path header: defines
-// RT_BVH_SSE and RT_BVH_AVX, includes the intrinsics they allow, and defines
-// RT_BVH_INLINE. Every header that includes it includes simd_end.hpp after
-// its last line of code, so the three macros never leave the fast path (no
+// RT_BVH_SSE, RT_BVH_AVX and RT_BVH_AVX2, includes the intrinsics they allow,
+// and defines RT_BVH_INLINE. Every header that includes it includes simd_end.hpp after
+// its last line of code, so the four macros never leave the fast path (no
 // #pragma once: each section opens anew).
 //
 //     #include "simd_begin.hpp"
@@ -31,6 +31,17 @@
 #include <immintrin.h>
 #else
 #define RT_BVH_AVX 0
+#endif
+#endif
+
+// RT_BVH_AVX2: AVX2 is there too (-mavx2, -march=native on an x86-64 from
+// 2013 on): nodes are 8-wide (layout.hpp), the children they meet ordered
+// with 256-bit integer operations (descend.hpp).
+#if !defined(RT_BVH_AVX2)
+#if RT_BVH_AVX && defined(__AVX2__)
+#define RT_BVH_AVX2 1
+#else
+#define RT_BVH_AVX2 0
 #endif
 #endif
 

@@ -4,4 +4,5 @@
 
 #undef RT_BVH_SSE
 #undef RT_BVH_AVX
+#undef RT_BVH_AVX2
 #undef RT_BVH_INLINE

@@ -1,4 +1,4 @@
-// bvh/wide_collapse.hpp - the binary tree made 4-wide (layout.hpp's nodes).
+// bvh/wide_collapse.hpp - the binary tree made wide (layout.hpp's nodes, bvh_width children).
 #pragma once
 
 #include <algorithm>
@@ -12,13 +12,13 @@
 namespace rt {
 namespace detail {
 
-/// Turns the binary tree into 4-wide nodes (4-wide BVHs for single rays:
+/// Turns the binary tree into bvh_width-wide nodes (wide BVHs for single rays:
 /// Wald, Benthin, Boulos, "Getting Rid of Packets", IEEE Symposium on
 /// Interactive Ray Tracing 2008; Dammertz, Hanika, Keller, "Shallow Bounding
 /// Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays", EGSR
 /// 2008): a node takes its two binary children, then repeatedly replaces its
 /// inner child of largest surface area (the one most rays enter) by that
-/// child's two children, until it has four. Nodes come out depth first.
+/// child's two children, until it has bvh_width. Nodes come out depth first.
 class wide_collapser {
 public:
     wide_collapser(const std::vector<binary_node>& binary, std::vector<bvh_node>& nodes, bvh_stats& stats)
@@ -28,7 +28,7 @@ public:
 
     std::uint32_t collapse(const binary_child& root, int depth)
     {
-        binary_child children[4];
+        binary_child children[bvh_width];
         int used = 0;
         if (root.count != 0) { // the whole tree is one leaf
             children[used++] = root;
@@ -36,7 +36,7 @@ public:
             children[used++] = binary_[root.index].side[0];
             children[used++] = binary_[root.index].side[1];
         }
-        while (used < 4) {
+        while (used < bvh_width) {
             int widest = -1;
             for (int c = 0; c < used; ++c)
                 if (children[c].count == 0 &&
@@ -50,7 +50,7 @@ public:
         }
         const std::uint32_t index = std::uint32_t(nodes_.size());
         nodes_.emplace_back();
-        for (int c = 0; c < 4; ++c) {
+        for (int c = 0; c < bvh_width; ++c) {
             const aabb box = c < used ? children[c].box : aabb{};
             bvh_node& node = nodes_[index];
             for (int k = 0; k < 3; ++k) {
