@@ -464,6 +464,68 @@ TEST_CASE("jittered samples are uniform in their cells: offsets spread over the 
                                  "largest " << high_y);
 }
 
+TEST_CASE("jittered samples: x and y are jittered independently, so the offsets fill the whole cell, not a line")
+{
+    // The offsets (x - i) n - a = xi1 and (y - j) n - b = xi2 of 4096 samples (64
+    // pixels x 8 x 8), binned into the 4 x 4 squares of side 1/4 of the cell. With
+    // xi1 and xi2 independent and uniform each sample lands in a given square with
+    // probability 1/16, so a square stays empty with probability (15/16)^4096 =
+    // 1.6e-115 and some square with at most 16 times that, 2.5e-114: a correct
+    // answer fails with at most that chance, whatever order it draws its numbers
+    // in (another order gives other samples from the same seed). The seed is
+    // fixed, so a given answer passes or fails every time; the reference passes,
+    // and so do the orders xi2 before xi1 and the cells column by column (checked).
+    // One random number used for both (xi2 = xi1) puts every offset on the cell's
+    // diagonal: 12 squares stay empty (a neighbour of the diagonal may catch a
+    // sample where float rounding crosses a square's corner); xi2 = 1 - xi1 the
+    // other diagonal, also 12.
+    const int n = 8, bins = 4;
+    int filled[bins][bins] = {};
+    double sum_x = 0, sum_y = 0, sum_xx = 0, sum_yy = 0, sum_xy = 0;
+    int count = 0;
+    for (int pixel = 0; pixel < 64; ++pixel) {
+        const int i = 5 + pixel % 8, j = 2 + pixel / 8;
+        rt::pcg32 rng = generator_for(13, i, j);
+        for (const rt::vec2& p : rt::jittered_samples(i, j, n, rng)) {
+            const double tx = (p.x - i) * n, ty = (p.y - j) * n;
+            const double ox = tx - std::min(std::floor(tx), double(n - 1));
+            const double oy = ty - std::min(std::floor(ty), double(n - 1));
+            const int bx = std::max(0, std::min(int(ox * bins), bins - 1));
+            const int by = std::max(0, std::min(int(oy * bins), bins - 1));
+            ++filled[by][bx];
+            sum_x += ox;
+            sum_y += oy;
+            sum_xx += ox * ox;
+            sum_yy += oy * oy;
+            sum_xy += ox * oy;
+            ++count;
+        }
+    }
+    REQUIRE(count == 4096);
+    int empty = 0, first_bx = 0, first_by = 0;
+    for (int by = 0; by < bins; ++by)
+        for (int bx = 0; bx < bins; ++bx)
+            if (filled[by][bx] == 0 && empty++ == 0) {
+                first_bx = bx;
+                first_by = by;
+            }
+    // the sample correlation of the x and y offsets, printed to help: about 0
+    // when independent (standard deviation 1/sqrt(4096) = 0.016), 1 on the
+    // diagonal, -1 on the other diagonal
+    const double cov = sum_xy / count - (sum_x / count) * (sum_y / count);
+    const double var_x = sum_xx / count - (sum_x / count) * (sum_x / count);
+    const double var_y = sum_yy / count - (sum_y / count) * (sum_y / count);
+    const double correlation = var_x > 0 && var_y > 0 ? cov / std::sqrt(var_x * var_y) : 0;
+    CHECK_MESSAGE(empty == 0,
+                  "expected the samples' offsets in their cells, ((x - i) n - a, (y - j) n - b) = (xi1, xi2), to fill "
+                  "every one of the 4 x 4 squares of side 1/4 of the cell, found "
+                      << empty << " of the 16 empty (the first: x offsets in [" << first_bx * 0.25 << ", "
+                      << (first_bx + 1) * 0.25 << ") with y offsets in [" << first_by * 0.25 << ", "
+                      << (first_by + 1) * 0.25 << ")); the x and y offsets have correlation " << correlation
+                      << " (about 0 expected): draw xi1 and xi2 separately, two next_float() per sample, one for x "
+                         "and one for y (one number for both puts every sample on the cell's diagonal)");
+}
+
 TEST_CASE("box reconstruction: the average of a constant is that constant")
 {
     rt::pcg32 rng(3, 4); // positions made here, not by the sampler: this case tests the reconstruction alone
