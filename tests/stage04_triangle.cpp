@@ -244,16 +244,36 @@ TEST_CASE("the closest hit of the list: the nearest shape, its index, and at an 
 
 TEST_CASE("many copies of one triangle: the list keeps the last copy")
 {
-    rt::mesh m;
-    m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
-    for (int k = 0; k < 1000; ++k)
-        m.triangles.push_back({0, 1, 2});
-    const rt::scene s = scene_of(m);
+    // 1000 shapes of the scene, all the same triangle, every other one a single
+    // triangle and every other a mesh of that one triangle: the ray down the z
+    // axis meets each at t = 3 exactly (an axis-parallel ray onto the plane
+    // z = 0: nothing to round), so only the list's own tie rule picks one, and
+    // the rule is the later shape.
+    // (One mesh of 1000 copies would test the library's mesh code instead: a
+    // mesh is one shape, whose closest triangle hit_shape picks.)
+    rt::scene s;
+    const vec3 a(-1, -1, 0), b(1, -1, 0), c(0, 1, 0);
+    for (int k = 0; k < 1000; ++k) {
+        if (k % 2 == 0) {
+            s.shapes.emplace_back(rt::triangle{a, b, c, k}); // material k names the copy
+        } else {
+            rt::mesh m;
+            m.positions = {a, b, c};
+            m.triangles.push_back({0, 1, 2});
+            m.material = k;
+            s.shapes.emplace_back(std::move(m));
+        }
+    }
     rt::hit_record rec;
     REQUIRE_MESSAGE(rt::closest_hit_list(s, rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec),
-                    "expected the ray down the z axis to hit the 1000 copies of the triangle at t = 3");
-    CHECK_MESSAGE(rec.primitive == 999, "expected the last of 1000 copies (primitive 999) at an equal t: the later shape "
-                                        "or triangle wins a tie");
+                    "expected the ray down the z axis to hit the 1000 copies of the triangle at t = 3, found no hit");
+    CHECK_MESSAGE(rec.shape == 999u, "expected shape 999, the last of the 1000 copies (shapes 0 .. 999, all hit at t = "
+                                     "3): at an equal t the later shape wins; pass the closest t so far as tmax and keep "
+                                     "a hit at t == tmax; found shape "
+                                         << rec.shape << std::string(rec.shape == 0 ? " (the first copy)" : ""));
+    CHECK_MESSAGE(rec.material == 999, "expected material 999, shape 999's (each copy has its index as material), "
+                                       "found " << rec.material << ": set rec from the shape kept");
+    CHECK_MESSAGE(near(rec.t, 3), "expected t = 3, found " << rec.t);
 }
 
 namespace {
