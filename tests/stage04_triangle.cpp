@@ -111,6 +111,28 @@ TEST_CASE("Moller-Trumbore and the watertight test find t and the barycentrics w
         CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.25f, 0.25f, -1}, {0, 0, -1}}, 0, 10, rec),
                       "expected a miss behind the origin (t = -1 < tmin = 0), found a hit");
 
+        // the edges and corners belong to the triangle (u >= 0, v >= 0, u + v <= 1):
+        // a ray down the z axis through (x, y, 0) has det = 1 and u = x, v = y,
+        // t = 2 with no rounding, so these hits are exact, not a matter of luck
+        struct on_boundary {
+            float x, y;
+            const char* where;
+        };
+        const on_boundary boundary[] = {{0, 0.5f, "on the edge a-c, where u = 0"},
+                                        {0.5f, 0, "on the edge a-b, where v = 0"},
+                                        {0.5f, 0.5f, "on the edge b-c, where u + v = 1"},
+                                        {0, 0, "on the corner a, where u = v = 0"},
+                                        {1, 0, "on the corner b, where u = 1, v = 0"},
+                                        {0, 1, "on the corner c, where u = 0, v = 1"}};
+        for (const on_boundary& p : boundary) {
+            const bool edge_hit = m.hit(tri, rt::ray{{p.x, p.y, 2}, {0, 0, -1}}, 0, 10, rec);
+            CHECK_MESSAGE(edge_hit, "expected a hit at (" << p.x << ", " << p.y << ", 0), " << std::string(p.where)
+                                                          << ": the edges are closed (u >= 0, v >= 0, u + v <= 1 "
+                                                             "hit; only u < 0, v < 0, u + v > 1 miss); found a miss");
+            if (edge_hit)
+                CHECK_MESSAGE(near(rec.t, 2), "expected t = 2 at (" << p.x << ", " << p.y << ", 0), found " << rec.t);
+        }
+
         // the interval [tmin, tmax] is closed
         CHECK_MESSAGE(!m.hit(tri, rt::ray{{0.25f, 0.25f, 2}, {0, 0, -1}}, 0, real(1.5), rec),
                       "expected a miss: t = 2 is beyond tmax = 1.5; found a hit");
@@ -211,12 +233,19 @@ TEST_CASE("the closest hit of the list: the nearest shape, its index, and at an 
     // two identical triangles at z = -2: the same t, so the later one is kept
     s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 3});
     s.shapes.emplace_back(rt::triangle{{-1, -1, -2}, {1, -1, -2}, {0, 1, -2}, 4});
+    // last, the farthest: a list that keeps the last hit it finds (tmax not
+    // narrowed to the closest t so far) answers this sphere
+    rt::sphere farthest_ball;
+    farthest_ball.center = vec3(0, 0, -20);
+    farthest_ball.material = 5;
+    s.shapes.emplace_back(farthest_ball);
     const rt::ray down_z{{0, 0, 0}, {0, 0, -1}};
     rt::hit_record rec;
     {
         INFO("the ray from the origin down -z meets shapes 2 and 3 (the same triangle twice, z = -2) at t = 2, "
-             "shape 1 (the sphere at z = -5) at t = 4 and shape 0 (z = -10) at t = 9: expected the closest, and at an "
-             "equal t the later shape, 3 (material 4)");
+             "shape 1 (the sphere at z = -5) at t = 4, shape 0 (z = -10) at t = 9 and shape 4 (z = -20) at t = 19: "
+             "expected the closest, and at an equal t the later shape, 3 (material 4); shape 4 means the last hit "
+             "found was kept: pass the closest t so far as tmax to the next shape");
         REQUIRE_MESSAGE(rt::closest_hit_list(s, down_z, 0, rt::infinity, rec), "expected a hit, found none");
         CHECK(rec.shape == 3);
         CHECK(rec.material == 4);
@@ -225,7 +254,8 @@ TEST_CASE("the closest hit of the list: the nearest shape, its index, and at an 
     // beyond the triangles: the near sphere, whose surface is at z = -4
     {
         INFO("tmin = 3, beyond the triangles at t = 2: expected the sphere at z = -5 (shape 1, material 2), entered at "
-             "t = 4, at (0, 0, -4) with the normal (0, 0, 1)");
+             "t = 4, at (0, 0, -4) with the normal (0, 0, 1), not the farther spheres, shape 0 (t = 9) and shape 4 "
+             "(t = 19)");
         REQUIRE_MESSAGE(rt::closest_hit_list(s, down_z, 3, rt::infinity, rec), "expected a hit, found none");
         CHECK(rec.shape == 1);
         CHECK_MESSAGE(near(rec.t, 4), "expected t = 4, found " << rec.t);
