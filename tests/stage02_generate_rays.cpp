@@ -621,6 +621,41 @@ TEST_CASE("box reconstruction: samples outside the pixel count for nothing, and 
     CHECK(none.b == 0);
 }
 
+TEST_CASE("jittered samples: every cell draws its own offsets, not one pair reused in all of them")
+{
+    // One pair (xi1, xi2) drawn once and used in every cell is a regular grid
+    // shifted as a whole: uniform in each cell taken alone, so the cases above
+    // may pass it, but the cells are not independent. Its 64 offsets agree up
+    // to float rounding (about 1e-5 here); 64 offsets drawn anew all lie
+    // within 0.01 of each other with probability below 64 * 0.01^63, so a
+    // spread of 0.01 or less on either axis is the reused pair.
+    const int n = 8;
+    for (int pixel = 0; pixel < 8; ++pixel) {
+        const int i = 3 + pixel, j = 1;
+        rt::pcg32 rng = generator_for(17, i, j);
+        const std::vector<rt::vec2> samples = rt::jittered_samples(i, j, n, rng);
+        REQUIRE(samples.size() == std::size_t(n * n));
+        double low[2] = {1, 1}, high[2] = {0, 0};
+        for (const rt::vec2& p : samples) {
+            const double t[2] = {(p.x - i) * n, (p.y - j) * n};
+            for (int k = 0; k < 2; ++k) {
+                const double o = t[k] - std::min(std::floor(t[k]), double(n - 1));
+                low[k] = std::min(low[k], o);
+                high[k] = std::max(high[k], o);
+            }
+        }
+        for (int k = 0; k < 2; ++k)
+            CHECK_MESSAGE(high[k] - low[k] > 0.01,
+                          "pixel (" << i << ", " << j << "), n = 8: expected the " << (k == 0 ? "x" : "y")
+                                    << " offsets of the 64 cells drawn anew in each cell, found them all in ["
+                                    << low[k] << ", " << high[k] << "]: one xi" << (k == 0 ? "1" : "2")
+                                    << " reused in every cell; draw xi1 and xi2 inside the loop over the cells, "
+                                       "once per sample");
+        if (!(high[0] - low[0] > 0.01 && high[1] - low[1] > 0.01))
+            break; // one pixel says it; the others would repeat it
+    }
+}
+
 TEST_CASE("jittered samples with the box on an edge: the covered fraction is off by at most one column of cells")
 {
     // the pixel (2, 1) left of the vertical edge x = 2 + c is covered by the fraction c.
