@@ -160,8 +160,13 @@ struct tile_rect {
 };
 
 /// A worker's buffers, kept from tile to tile so that memory is not
-/// allocated (and page-faulted in) again for every tile.
-struct tile_scratch {
+/// allocated (and page-faulted in) again for every tile. Each on cache lines
+/// of its own: two workers' scratch side by side in one line (96 bytes each)
+/// wrote each other's line at every pixel (false sharing), and whether they
+/// did depended on where malloc put the array: whole frames on two threads
+/// were 1.50-1.57x one thread in one process and 1.92-1.97x in another
+/// (docs/performance.md, experiment 7).
+struct alignas(64) tile_scratch {
     std::vector<color> radiances;
     std::vector<double> weight_x, weight_y;
     std::vector<vec2> offsets;
