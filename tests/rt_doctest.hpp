@@ -12,6 +12,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <iomanip>
 #include <limits>
@@ -97,6 +98,25 @@ template <class E, class = void>
 struct has_name_of : std::false_type {};
 template <class E>
 struct has_name_of<E, std::void_t<decltype(name_of(std::declval<E>()))>> : std::true_type {};
+
+/// The failures of one kind in a loop: how many, and the first in words, so a
+/// check after the loop prints one message instead of one per failure:
+///     problems bad;
+///     for (...) if (!ok) bad.add([&](std::ostream& o) { o << "item " << k << " is ..."; });
+///     CHECK_MESSAGE(bad.count == 0, bad.count << " items ...; the first: " << bad.first);
+struct problems {
+    std::size_t count = 0;
+    std::string first;
+    template <class Describe>
+    void add(Describe&& describe)
+    {
+        if (count++ == 0) {
+            std::ostringstream out;
+            describe(out);
+            first = out.str();
+        }
+    }
+};
 
 } // namespace rt_doctest
 

@@ -76,20 +76,7 @@ void exact_interval(const rt::aabb& box, const rt::ray& r, long double& enter, l
     }
 }
 
-/// The number of failures of one kind in a loop, and the first one in words.
-struct problems {
-    std::size_t count = 0;
-    std::string first;
-    template <class Describe>
-    void add(Describe&& describe)
-    {
-        if (count++ == 0) {
-            std::ostringstream out;
-            describe(out);
-            first = out.str();
-        }
-    }
-};
+using rt_doctest::problems; // the failures of one kind in a loop, and the first in words
 
 /// A ray and its interval in words: "(-5, 0, 0) + t (1, 0, 0), t in [0, inf]".
 std::string ray_words(const vec3& o, const vec3& d, real tmin, real tmax)

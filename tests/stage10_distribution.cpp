@@ -48,20 +48,7 @@ void check_fraction(const std::string& what, double got, double want, int n)
     CHECK(std::fabs(got - want) <= 5 * sigma);
 }
 
-/// The first problem of a loop, kept for the message, and how many there were.
-struct problems {
-    int count = 0;
-    std::string first;
-    template <class Describe>
-    void add(Describe&& describe)
-    {
-        if (count++ == 0) {
-            std::ostringstream out;
-            describe(out);
-            first = out.str();
-        }
-    }
-};
+using rt_doctest::problems; // the failures of one kind in a loop, and the first in words
 
 void check_none(const problems& p, const std::string& advice)
 {

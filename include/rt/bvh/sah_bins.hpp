@@ -313,10 +313,12 @@ private:
 #else
     void take(const build_item& item)
     {
-        mine_.box.grow(item.box);
-        mine_.centroids.grow(item.centroid);
-        if (with_widest)
-            mine_.widest = glm::max(mine_.widest, item.box.hi - item.box.lo);
+        if (with_widest) {
+            mine_.add(item);
+        } else {
+            mine_.box.grow(item.box);
+            mine_.centroids.grow(item.centroid);
+        }
     }
     void finish(side_bounds& out) const { out.merge(mine_); }
 
