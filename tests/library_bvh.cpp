@@ -137,8 +137,8 @@ namespace {
 /// Whether two accelerators hold the same tree: nodes, boxes, leaves and the primitives of their blocks.
 bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
 {
-    const std::vector<rt::bvh_node>& na = a.tree().nodes();
-    const std::vector<rt::bvh_node>& nb = b.tree().nodes();
+    const auto& na = a.tree().nodes();
+    const auto& nb = b.tree().nodes();
     const auto& pa = a.tree().blocks();
     const auto& pb = b.tree().blocks();
     if (na.size() != nb.size() || pa.size() != pb.size())
@@ -258,6 +258,34 @@ TEST_CASE("the build's tasks: each runs once whichever thread takes it, and an e
                           "a task failed");
         if (right_throws)
             CHECK(other_ran); // the left side ran to its end before the right side's error was rethrown
+    }
+}
+
+TEST_CASE("the build's large arrays: from 8 MB on pages of their own, 2 MB aligned on Linux; every element usable")
+{
+    using array = rt::detail::large_array<std::uint64_t>;
+    using allocator = array::allocator_type;
+    for (const std::size_t bytes : {std::size_t(4096), allocator::huge_page_threshold - 8,
+                                    allocator::huge_page_threshold, allocator::huge_page_threshold + 12345 * 8}) {
+        CAPTURE(bytes);
+        array a(bytes / 8);
+        const auto address = reinterpret_cast<std::uintptr_t>(a.data());
+        INFO("expected the array aligned to a cache line at least, found it at " << address);
+        CHECK(address % 64 == 0);
+#if defined(__linux__)
+        if (bytes >= allocator::huge_page_threshold) {
+            INFO("expected an array of 8 MB or more at a 2 MB boundary (a huge page's), found it at " << address);
+            CHECK(address % allocator::huge_page == 0);
+        }
+#endif
+        for (std::size_t i = 0; i < a.size(); ++i)
+            a[i] = i * 2654435761u;
+        a.push_back(7); // grows into a new array and moves every element
+        bool same = a.back() == 7;
+        for (std::size_t i = 0; i + 1 < a.size() && same; ++i)
+            same = a[i] == i * 2654435761u;
+        INFO("expected every element written to be read back after the array grew");
+        CHECK(same);
     }
 }
 

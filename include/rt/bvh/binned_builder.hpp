@@ -46,7 +46,7 @@ public:
     /// A builder over `items`; `tasks` (nullptr: one thread) shares its large
     /// nodes' subtrees among threads. Call build() or build_spatial() inside
     /// tasks->run().
-    binary_builder(std::vector<build_item>& items, const bvh_options& options, build_tasks* tasks,
+    binary_builder(build_item_array& items, const bvh_options& options, build_tasks* tasks,
                    const packed_primitive* prims = nullptr)
         : items_(items), options_(options), tasks_(tasks), prims_(prims),
           bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
@@ -64,7 +64,7 @@ public:
         return n < parallel_threshold ? 1 : thread_count(requested);
     }
 
-    std::vector<binary_node> nodes;
+    binary_node_array nodes;
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
     std::size_t spatial_splits = 0;
 
@@ -80,7 +80,7 @@ public:
     /// hit whichever it meets. A node where the overlap is small, or whose
     /// subtree is small, is handed to build(), in place at the end of items_.
     /// `known_bounds`: the references' bounds (side_bounds), if the caller has them.
-    binary_child build_spatial(std::vector<build_item> refs, int depth, real root_area, std::size_t& budget,
+    binary_child build_spatial(build_item_array refs, int depth, real root_area, std::size_t& budget,
                                const side_bounds* known_bounds = nullptr)
     {
         const std::size_t n = refs.size();
@@ -93,7 +93,7 @@ public:
                 items_.swap(refs); // the whole tree without a cut (a fine mesh): no copy
             else
                 items_.insert(items_.end(), refs.begin(), refs.end());
-            std::vector<build_item>().swap(refs);
+            build_item_array().swap(refs);
             return build(begin, items_.size(), box, depth, known, &centroids);
         };
         if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
@@ -147,8 +147,8 @@ public:
                 else
                     out.right.push_back(r);
             });
-        std::vector<build_item>().swap(refs);
-        std::vector<build_item> left = std::move(parts.left), right = std::move(parts.right);
+        build_item_array().swap(refs);
+        build_item_array left = std::move(parts.left), right = std::move(parts.right);
 
         // the budget left is shared by the children in proportion to their
         // references, so the tree does not depend on which is built first
@@ -162,7 +162,7 @@ public:
         binary_child l, r;
         if (n >= parallel_threshold && tasks_ != nullptr) {
             // the right child into an item array of its own: it appends to it
-            std::vector<build_item> right_items;
+            build_item_array right_items;
             build_in_parallel(
                 right_items, l, r,
                 [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
@@ -260,7 +260,7 @@ private:
     /// it had an array of its own. So the tree does not depend on the thread
     /// count, nor on which thread built what.
     template <class Left, class Right>
-    void build_in_parallel(std::vector<build_item>& right_items, binary_child& left, binary_child& right,
+    void build_in_parallel(build_item_array& right_items, binary_child& left, binary_child& right,
                            const Left& build_left, const Right& build_right)
     {
         binary_builder right_builder(right_items, options_, tasks_, prims_);
@@ -309,7 +309,7 @@ private:
 
     /// The best spatial split of a node's references (spatial_split.hpp),
     /// binned in two halves on two threads from parallel_binning_threshold on.
-    spatial_split find_spatial_split(const std::vector<build_item>& refs, const aabb& box, const bool wide[3])
+    spatial_split find_spatial_split(const build_item_array& refs, const aabb& box, const bool wide[3])
     {
         const std::size_t n = refs.size();
         spatial_bins bins(box, wide, slice_count_);
@@ -326,13 +326,13 @@ private:
 
     /// A node's references sent to its two children (build_spatial).
     struct sides {
-        std::vector<build_item> left, right;
+        build_item_array left, right;
     };
 
     /// The bounds of a node's references, in one pass (side_gatherer, in
     /// registers; gathered in to_sides, they were stored and reloaded around
     /// every push_back).
-    static side_bounds bounds_of(const std::vector<build_item>& refs)
+    static side_bounds bounds_of(const build_item_array& refs)
     {
         side_gatherer<true> on;
         for (const build_item& r : refs)
@@ -346,7 +346,7 @@ private:
     /// parallel_binning_threshold references on, the two halves on two
     /// threads, joined in order: the same sides as one thread makes.
     template <class To>
-    sides to_sides(const std::vector<build_item>& refs, const To& to)
+    sides to_sides(const build_item_array& refs, const To& to)
     {
         const std::size_t n = refs.size();
         const auto run = [&](std::size_t begin, std::size_t end, sides& out) {
@@ -386,7 +386,7 @@ private:
         return c;
     }
 
-    std::vector<build_item>& items_;
+    build_item_array& items_;
     const bvh_options& options_;
     build_tasks* tasks_; ///< nullptr: one thread
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)

@@ -13,6 +13,7 @@
 #include "../aabb.hpp"
 #include "../config.hpp"
 #include "../vec.hpp"
+#include "parallel_fill.hpp"
 
 namespace rt {
 
@@ -103,6 +104,11 @@ struct binary_child {
 struct binary_node {
     binary_child side[2];
 };
+
+/// The build's arrays (parallel_fill.hpp): from 8 MB, pages of their own
+/// (huge pages where the kernel offers them), not memory glibc may keep.
+using build_item_array = large_array<build_item>;
+using binary_node_array = large_array<binary_node>;
 
 } // namespace detail
 

@@ -84,7 +84,7 @@ public:
         used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
         const int threads = detail::binary_builder::threads_for(count, used.threads);
 
-        std::vector<detail::build_item> items(count);
+        detail::build_item_array items(count);
         detail::side_bounds all; // the items' box, centroids and widest extents, for build_spatial
         std::mutex all_mutex;    // and has_spheres_
         detail::fill_in_parallel(count, threads, [&](std::size_t begin, std::size_t end) {
@@ -109,7 +109,7 @@ public:
         detail::binary_child root;
         tasks.run(threads, [&] {
             if (budget > 0) {
-                std::vector<detail::build_item> refs;
+                detail::build_item_array refs;
                 refs.swap(items);
                 items.reserve(refs.size() + budget);
                 root = builder.build_spatial(std::move(refs), 0, detail::half_area(scene_box), budget, &all);
@@ -119,7 +119,7 @@ public:
         });
         stats_.references = items.size();
         stats_.spatial_splits = builder.spatial_splits;
-        const std::vector<detail::binary_node>& binary = builder.nodes;
+        const detail::binary_node_array& binary = builder.nodes;
         const real root_area = detail::half_area(scene_box);
         stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;
         stats_.binary_nodes = binary.size();
@@ -163,12 +163,12 @@ public:
         return traverse<true, true>(r, tmin, tmax, unused);
     }
 
-    const std::vector<bvh_node>& nodes() const { return nodes_; }
+    const detail::large_array<bvh_node>& nodes() const { return nodes_; }
     /// The leaves' primitives as blocks of four, in the order the nodes meet
     /// the leaves (a leaf's reference in bvh_node::child is leaf_flag | its
     /// first block); a primitive that spatial splits cut appears once per leaf
     /// that holds a piece of it.
-    const std::vector<triangle_block, detail::default_init_allocator<triangle_block>>& blocks() const
+    const detail::large_array<triangle_block>& blocks() const
     {
         return blocks_;
     }
@@ -188,7 +188,7 @@ private:
     /// go, one pass over the nodes, then the blocks themselves on threads
     /// (parallel_fill.hpp). A leaf's reference becomes its first block; count
     /// stays its number of primitives.
-    void pack_blocks(const packed_primitive* prims, const std::vector<detail::build_item>& items, int threads)
+    void pack_blocks(const packed_primitive* prims, const detail::build_item_array& items, int threads)
     {
         struct leaf_blocks {
             std::uint32_t first_item, count, first_block;
@@ -319,8 +319,8 @@ private:
         }
     }
 
-    std::vector<bvh_node> nodes_;
-    std::vector<triangle_block, detail::default_init_allocator<triangle_block>> blocks_;
+    detail::large_array<bvh_node> nodes_;          // large_array: huge pages (parallel_fill.hpp)
+    detail::large_array<triangle_block> blocks_;
     bool has_spheres_ = false;
     bvh_stats stats_;
 };

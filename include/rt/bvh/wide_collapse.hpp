@@ -8,6 +8,7 @@
 #include "../aabb.hpp"
 #include "build_options.hpp"
 #include "layout.hpp"
+#include "parallel_fill.hpp"
 
 namespace rt {
 namespace detail {
@@ -21,7 +22,7 @@ namespace detail {
 /// child's two children, until it has bvh_width. Nodes come out depth first.
 class wide_collapser {
 public:
-    wide_collapser(const std::vector<binary_node>& binary, std::vector<bvh_node>& nodes, bvh_stats& stats)
+    wide_collapser(const binary_node_array& binary, large_array<bvh_node>& nodes, bvh_stats& stats)
         : binary_(binary), nodes_(nodes), stats_(stats)
     {
     }
@@ -75,8 +76,8 @@ public:
     }
 
 private:
-    const std::vector<binary_node>& binary_;
-    std::vector<bvh_node>& nodes_;
+    const binary_node_array& binary_;
+    large_array<bvh_node>& nodes_;
     bvh_stats& stats_;
 };
 
