@@ -261,7 +261,7 @@ TEST_CASE("the build's tasks: each runs once whichever thread takes it, and an e
     }
 }
 
-TEST_CASE("the build's large arrays: from 8 MB on pages of their own, 2 MB aligned on Linux; every element usable")
+TEST_CASE("the build's large arrays: from 8 MB on pages of their own, 2 MB aligned on Linux, every element usable")
 {
     using array = rt::detail::large_array<std::uint64_t>;
     using allocator = array::allocator_type;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "../config.hpp"
 #include "../parallel.hpp"
 #include "../vec.hpp"
+#include "build_store.hpp"
 #include "build_options.hpp"
 #include "build_tasks.hpp"
 #include "packed.hpp"
@@ -38,17 +40,16 @@ namespace detail {
 /// Speed: one pass over a node's primitives bins them on all three axes at
 /// once (sah_bins.hpp), its two halves on two threads for a node of 65,536 or
 /// more; a node of 4,096 or more offers its right child to an idle thread
-/// (build_tasks.hpp; bvh_options::threads), which builds it into its own node
-/// array, and the arrays are joined in the order a single thread writes them,
-/// so the tree is the same whatever the number of threads.
+/// (build_tasks.hpp; bvh_options::threads). Nodes go to one shared store
+/// (binary_nodes.hpp); the tree is the same whatever the number of threads.
 class binary_builder {
 public:
     /// A builder over `items`; `tasks` (nullptr: one thread) shares its large
     /// nodes' subtrees among threads. Call build() or build_spatial() inside
     /// tasks->run().
-    binary_builder(build_item_array& items, const bvh_options& options, build_tasks* tasks,
+    binary_builder(item_pool& items, binary_node_store& nodes, const bvh_options& options, build_tasks* tasks,
                    const packed_primitive* prims = nullptr)
-        : items_(items), options_(options), tasks_(tasks), prims_(prims),
+        : items_(items), nodes_(nodes), options_(options), tasks_(tasks), prims_(prims),
           bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
           slice_count_(std::size_t(std::max(2, std::min(options.spatial_bins, 256)))),
           bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
@@ -64,7 +65,7 @@ public:
         return n < parallel_threshold ? 1 : thread_count(requested);
     }
 
-    binary_node_array nodes;
+    std::size_t node_count = 0; ///< the nodes this builder and the builders it joined made
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
     std::size_t spatial_splits = 0;
 
@@ -78,105 +79,18 @@ public:
     /// to both children, each with the box of its part (clipped_box). The
     /// pieces are references to the same primitive, so a ray gets the same
     /// hit whichever it meets. A node where the overlap is small, or whose
-    /// subtree is small, is handed to build(), in place at the end of items_.
+    /// subtree is small, is handed to build(), in a range of items_ of its own.
     /// `known_bounds`: the references' bounds (side_bounds), if the caller has them.
     binary_child build_spatial(build_item_array refs, int depth, real root_area, std::size_t& budget,
                                const side_bounds* known_bounds = nullptr)
     {
-        const std::size_t n = refs.size();
-        const side_bounds bounds = known_bounds != nullptr ? *known_bounds : bounds_of(refs);
-        const aabb& box = bounds.box;
-        const aabb& centroids = bounds.centroids;
-        const auto hand_over = [&](const split* known = nullptr) {
-            const std::size_t begin = items_.size();
-            if (begin == 0 && depth == 0)
-                items_.swap(refs); // the whole tree without a cut (a fine mesh): no copy
-            else
-                items_.insert(items_.end(), refs.begin(), refs.end());
-            build_item_array().swap(refs);
-            return build(begin, items_.size(), box, depth, known, &centroids);
-        };
-        if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
-            return hand_over();
-        // Cuts across the longest axis only (all three: 3x the cost, slower trees; docs/performance.md exp. 6).
-        // No reference wider than a slice there (a fine mesh, the lower tree): build() works in place.
-        const vec3 e = box.extent();
-        const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
-        if (!(bounds.widest[axis] > e[axis] / real(slice_count_)))
-            return hand_over();
-        const bool wide[3] = {axis == 0, axis == 1, axis == 2};
-        const split object = find_split(refs.data(), n, centroids);
-        if (object.axis < 0)
-            return hand_over(&object);
-        const aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
-        if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
-            return hand_over(&object);
-        const spatial_split cut = find_spatial_split(refs, box, wide);
+        return spatial_node(refs.data(), refs.size(), &refs, depth, root_area, budget, known_bounds);
+    }
 
-        sides parts;
-        if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
-            parts = to_sides(refs, [&](const build_item& r, sides& out) {
-                if (r.box.hi[cut.axis] <= cut.plane) {
-                    out.left.push_back(r);
-                } else if (r.box.lo[cut.axis] >= cut.plane) {
-                    out.right.push_back(r);
-                } else {
-                    const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
-                    const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
-                    if (below.empty()) {
-                        out.right.push_back(r);
-                    } else if (above.empty()) {
-                        out.left.push_back(r);
-                    } else {
-                        out.left.push_back(build_item{below, below.center(), r.index});
-                        out.right.push_back(build_item{above, above.center(), r.index});
-                    }
-                }
-            });
-            if (parts.left.empty() || parts.right.empty())
-                parts = sides();
-            else {
-                budget -= std::min(budget, parts.left.size() + parts.right.size() - n);
-                ++spatial_splits;
-            }
-        }
-        if (parts.left.empty() && parts.right.empty()) // the object split, as build() makes it
-            parts = to_sides(refs, [&](const build_item& r, sides& out) {
-                if (object.left_of(r.centroid))
-                    out.left.push_back(r);
-                else
-                    out.right.push_back(r);
-            });
-        build_item_array().swap(refs);
-        build_item_array left = std::move(parts.left), right = std::move(parts.right);
-
-        // the budget left is shared by the children in proportion to their
-        // references, so the tree does not depend on which is built first
-        std::size_t right_budget =
-            std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
-        std::size_t left_budget = budget - right_budget;
-        budget = 0;
-        const std::size_t index = nodes.size();
-        nodes.emplace_back();
-        sah_cost += double(options_.traversal_cost) * double(half_area(box));
-        binary_child l, r;
-        if (n >= parallel_threshold && tasks_ != nullptr) {
-            // the right child into an item array of its own: it appends to it
-            build_item_array right_items;
-            build_in_parallel(
-                right_items, l, r,
-                [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
-                [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
-        } else {
-            l = build_spatial(std::move(left), depth + 1, root_area, left_budget);
-            r = build_spatial(std::move(right), depth + 1, root_area, right_budget);
-        }
-        nodes[index].side[0] = l;
-        nodes[index].side[1] = r;
-        binary_child inner;
-        inner.box = box;
-        inner.index = std::uint32_t(index);
-        return inner;
+    /// build_spatial at the root, whose n references are items_[0, n) already.
+    binary_child build_spatial_root(std::size_t n, real root_area, std::size_t& budget, const side_bounds& bounds)
+    {
+        return spatial_node(items_.data(), n, nullptr, 0, root_area, budget, &bounds);
     }
 
     /// Builds the subtree of items [begin, end) inside `box`; returns it as a
@@ -200,7 +114,7 @@ public:
             centroids = *known_centroids;
         else
             for (std::size_t i = begin; i < end; ++i)
-                centroids.grow(items_[i].centroid);
+                centroids.grow(items_.data()[i].centroid);
 
         aabb left_box, right_box, left_centroids, right_centroids;
         std::size_t middle = begin;
@@ -212,9 +126,9 @@ public:
             middle = begin + n / 2;
             left_centroids = right_centroids = centroids;
             for (std::size_t i = begin; i < middle; ++i)
-                left_box.grow(items_[i].box);
+                left_box.grow(items_.data()[i].box);
             for (std::size_t i = middle; i < end; ++i)
-                right_box.grow(items_[i].box);
+                right_box.grow(items_.data()[i].box);
         } else {
             const real split_cost =
                 area > 0 ? options_.traversal_cost + options_.intersection_cost * best.cost / area : real(0);
@@ -229,54 +143,150 @@ public:
             right_centroids = r.centroids;
         }
 
-        const std::size_t index = nodes.size();
-        nodes.emplace_back();
+        binary_node* node = nullptr; // stays where it is (build_store.hpp)
+        const std::uint32_t index = new_node(node);
         sah_cost += double(options_.traversal_cost) * double(area);
         binary_child left, right;
         if (n >= parallel_threshold && tasks_ != nullptr) {
             // the right half sorts its own range of items_ in place
             build_in_parallel(
-                items_, left, right,
-                [&] { return build(begin, middle, left_box, depth + 1, nullptr, &left_centroids); },
+                left, right, [&] { return build(begin, middle, left_box, depth + 1, nullptr, &left_centroids); },
                 [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1, nullptr, &right_centroids); });
         } else {
             left = build(begin, middle, left_box, depth + 1, nullptr, &left_centroids);
             right = build(middle, end, right_box, depth + 1, nullptr, &right_centroids);
         }
-        nodes[index].side[0] = left;
-        nodes[index].side[1] = right;
+        node->side[0] = left;
+        node->side[1] = right;
         binary_child inner;
         inner.box = box;
-        inner.index = std::uint32_t(index);
+        inner.index = index;
         return inner;
     }
 
 private:
-    /// Builds a node's left child here (build_left()) while its right child
-    /// (build_right(b), b a builder over `right_items`: items_ itself, or an
-    /// array of its own) is offered to the other threads (build_tasks.hpp),
-    /// then joins the arrays as a single thread writes them: the right
-    /// subtree's nodes after the left subtree's, and its items after ours when
-    /// it had an array of its own. So the tree does not depend on the thread
-    /// count, nor on which thread built what.
-    template <class Left, class Right>
-    void build_in_parallel(build_item_array& right_items, binary_child& left, binary_child& right,
-                           const Left& build_left, const Right& build_right)
+    /// build_spatial over refs[0, n), which `owned` holds (nullptr: the root's, in items_).
+    binary_child spatial_node(const build_item* refs, std::size_t n, build_item_array* owned, int depth, real root_area,
+                              std::size_t& budget, const side_bounds* known_bounds)
     {
-        binary_builder right_builder(right_items, options_, tasks_, prims_);
+        const side_bounds bounds = known_bounds != nullptr ? *known_bounds : bounds_of(refs, n);
+        const aabb& box = bounds.box;
+        const aabb& centroids = bounds.centroids;
+        const auto hand_over = [&](const split* known = nullptr) {
+            if (owned == nullptr) // the whole tree without a cut (a fine mesh): in place
+                return build(0, n, box, depth, known, &centroids);
+            const std::size_t begin = items_.claim_copy(refs, n);
+            build_item_array().swap(*owned);
+            return build(begin, begin + n, box, depth, known, &centroids);
+        };
+        if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
+            return hand_over();
+        // Cuts across the longest axis only (all three: 3x the cost, slower trees; docs/performance.md exp. 6).
+        // No reference wider than a slice there (a fine mesh, the lower tree): build() works in place.
+        const vec3 e = box.extent();
+        const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
+        if (!(bounds.widest[axis] > e[axis] / real(slice_count_)))
+            return hand_over();
+        const bool wide[3] = {axis == 0, axis == 1, axis == 2};
+        const split object = find_split(refs, n, centroids);
+        if (object.axis < 0)
+            return hand_over(&object);
+        const aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
+        if (overlap.empty() || !(half_area(overlap) > options_.spatial_overlap * root_area))
+            return hand_over(&object);
+        const spatial_split cut = find_spatial_split(refs, n, box, wide);
+
+        sides parts;
+        if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
+            parts = to_sides(refs, n, [&](const build_item& r, sides& out) {
+                if (r.box.hi[cut.axis] <= cut.plane) {
+                    out.left.push_back(r);
+                } else if (r.box.lo[cut.axis] >= cut.plane) {
+                    out.right.push_back(r);
+                } else {
+                    const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
+                    const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
+                    if (below.empty()) {
+                        out.right.push_back(r);
+                    } else if (above.empty()) {
+                        out.left.push_back(r);
+                    } else {
+                        out.left.push_back(build_item{below, below.center(), r.index});
+                        out.right.push_back(build_item{above, above.center(), r.index});
+                    }
+                }
+            });
+            const std::size_t extra = parts.left.size() + parts.right.size() - n; // the budget bounds items_
+            if (parts.left.empty() || parts.right.empty() || extra > budget)
+                parts = sides();
+            else {
+                budget -= extra;
+                ++spatial_splits;
+            }
+        }
+        if (parts.left.empty() && parts.right.empty()) // the object split, as build() makes it
+            parts = to_sides(refs, n, [&](const build_item& r, sides& out) {
+                if (object.left_of(r.centroid))
+                    out.left.push_back(r);
+                else
+                    out.right.push_back(r);
+            });
+        if (owned != nullptr)
+            build_item_array().swap(*owned);
+        else
+            items_.release_after(0); // the root's items are on its sides now
+        build_item_array left = std::move(parts.left), right = std::move(parts.right);
+
+        // the budget left is shared by the children in proportion to their
+        // references, so the tree does not depend on which is built first
+        std::size_t right_budget =
+            std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
+        std::size_t left_budget = budget - right_budget;
+        budget = 0;
+        binary_node* node = nullptr; // stays where it is (build_store.hpp)
+        const std::uint32_t index = new_node(node);
+        sah_cost += double(options_.traversal_cost) * double(half_area(box));
+        binary_child l, r;
+        if (n >= parallel_threshold && tasks_ != nullptr) {
+            build_in_parallel(
+                l, r, [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
+                [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
+        } else {
+            l = build_spatial(std::move(left), depth + 1, root_area, left_budget);
+            r = build_spatial(std::move(right), depth + 1, root_area, right_budget);
+        }
+        node->side[0] = l;
+        node->side[1] = r;
+        binary_child inner;
+        inner.box = box;
+        inner.index = index;
+        return inner;
+    }
+
+    /// A new node's index, in this builder's run of the store, and `at` the node.
+    std::uint32_t new_node(binary_node*& at)
+    {
+        if (next_node_ == run_end_) {
+            next_node_ = nodes_.take_run();
+            run_end_ = next_node_ + binary_node_store::run;
+            run_at_ = &nodes_[next_node_]; // a run's nodes are consecutive
+        }
+        at = ::new (static_cast<void*>(run_at_++)) binary_node;
+        ++node_count;
+        return next_node_++;
+    }
+
+    /// Builds a node's left child here (build_left()) while its right child
+    /// (build_right(b), b a builder over the same stores) is offered to the
+    /// other threads (build_tasks.hpp); the right subtree's nodes and items
+    /// are in the stores (build_store.hpp) when it joins.
+    template <class Left, class Right>
+    void build_in_parallel(binary_child& left, binary_child& right, const Left& build_left, const Right& build_right)
+    {
+        binary_builder right_builder(items_, nodes_, options_, tasks_, prims_);
         auto build_right_here = [&] { right = build_right(right_builder); };
         tasks_->fork(build_right_here, [&] { left = build_left(); });
-        const bool own_items = &right_items != &items_;
-        const std::uint32_t node_offset = std::uint32_t(nodes.size());
-        const std::uint32_t item_offset = own_items ? std::uint32_t(items_.size()) : 0;
-        const auto moved = [&](binary_child& c) { c.index += c.count == 0 ? node_offset : item_offset; };
-        for (binary_node& node : right_builder.nodes)
-            for (binary_child& side : node.side)
-                moved(side);
-        moved(right);
-        nodes.insert(nodes.end(), right_builder.nodes.begin(), right_builder.nodes.end());
-        if (own_items)
-            items_.insert(items_.end(), right_items.begin(), right_items.end());
+        node_count += right_builder.node_count;
         sah_cost += right_builder.sah_cost;
         spatial_splits += right_builder.spatial_splits;
     }
@@ -309,17 +319,16 @@ private:
 
     /// The best spatial split of a node's references (spatial_split.hpp),
     /// binned in two halves on two threads from parallel_binning_threshold on.
-    spatial_split find_spatial_split(const build_item_array& refs, const aabb& box, const bool wide[3])
+    spatial_split find_spatial_split(const build_item* refs, std::size_t n, const aabb& box, const bool wide[3])
     {
-        const std::size_t n = refs.size();
         spatial_bins bins(box, wide, slice_count_);
         if (in_halves(n)) {
             spatial_bins other(box, wide, slice_count_);
-            auto second_half = [&] { other.add(refs.data() + n / 2, n - n / 2, prims_); };
-            tasks_->fork(second_half, [&] { bins.add(refs.data(), n / 2, prims_); });
+            auto second_half = [&] { other.add(refs + n / 2, n - n / 2, prims_); };
+            tasks_->fork(second_half, [&] { bins.add(refs, n / 2, prims_); });
             bins.merge(other);
         } else {
-            bins.add(refs.data(), n, prims_);
+            bins.add(refs, n, prims_);
         }
         return bins.best(n, options_.primitives_per_test);
     }
@@ -329,26 +338,12 @@ private:
         build_item_array left, right;
     };
 
-    /// The bounds of a node's references, in one pass (side_gatherer, in
-    /// registers; gathered in to_sides, they were stored and reloaded around
-    /// every push_back).
-    static side_bounds bounds_of(const build_item_array& refs)
-    {
-        side_gatherer<true> on;
-        for (const build_item& r : refs)
-            on.take(r);
-        side_bounds out;
-        on.finish(out);
-        return out;
-    }
-
     /// to(r, sides) for every reference, in order; from
     /// parallel_binning_threshold references on, the two halves on two
     /// threads, joined in order: the same sides as one thread makes.
     template <class To>
-    sides to_sides(const build_item_array& refs, const To& to)
+    sides to_sides(const build_item* refs, std::size_t n, const To& to)
     {
-        const std::size_t n = refs.size();
         const auto run = [&](std::size_t begin, std::size_t end, sides& out) {
             out.left.reserve(end - begin);
             out.right.reserve(end - begin);
@@ -372,7 +367,7 @@ private:
     {
         // two pieces of one primitive (spatial splits) in one leaf: keep one;
         // the rest of the range stays in items_, referenced by no leaf
-        const auto first = items_.begin() + std::ptrdiff_t(begin);
+        build_item* const first = items_.data() + begin;
         std::sort(first, first + std::ptrdiff_t(n),
                   [](const build_item& x, const build_item& y) { return x.index < y.index; });
         n = std::size_t(std::unique(first, first + std::ptrdiff_t(n),
@@ -386,7 +381,10 @@ private:
         return c;
     }
 
-    build_item_array& items_;
+    item_pool& items_;
+    binary_node_store& nodes_;
+    std::uint32_t next_node_ = 0, run_end_ = 0; ///< this builder's run of nodes_ (new_node)
+    binary_node* run_at_ = nullptr;            ///< where nodes_[next_node_] lies
     const bvh_options& options_;
     build_tasks* tasks_; ///< nullptr: one thread
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)

@@ -105,10 +105,9 @@ struct binary_node {
     binary_child side[2];
 };
 
-/// The build's arrays (parallel_fill.hpp): from 8 MB, pages of their own
+/// The build's references (parallel_fill.hpp): from 8 MB, pages of their own
 /// (huge pages where the kernel offers them), not memory glibc may keep.
 using build_item_array = large_array<build_item>;
-using binary_node_array = large_array<binary_node>;
 
 } // namespace detail
 

@@ -12,6 +12,7 @@
 //   layout.hpp          wide nodes (8 children with AVX2, else 4), leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
+//   build_store.hpp     its nodes and references, written by all the build's threads
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
 //   build_tasks.hpp     the build's threads: subtrees offered to idle ones
@@ -43,6 +44,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,6 +56,7 @@
 #include "binned_builder.hpp"
 #include "build_tasks.hpp"
 #include "build_options.hpp"
+#include "build_store.hpp"
 #include "descend.hpp"
 #include "layout.hpp"
 #include "leaf_test.hpp"
@@ -84,17 +87,21 @@ public:
         used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
         const int threads = detail::binary_builder::threads_for(count, used.threads);
 
-        detail::build_item_array items(count);
+        // the references: the primitives' boxes first, then (spatial splits)
+        // pieces of them, at most `budget` more (build_store.hpp)
+        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(count));
+        detail::item_pool items(count + budget);
+        detail::build_item* const first = items.data() + items.claim(count);
         detail::side_bounds all; // the items' box, centroids and widest extents, for build_spatial
         std::mutex all_mutex;    // and has_spheres_
         detail::fill_in_parallel(count, threads, [&](std::size_t begin, std::size_t end) {
             detail::side_bounds part;
             bool spheres = false;
             for (std::size_t i = begin; i < end; ++i) {
-                items[i].box = packed_bounds(prims[i]);
-                items[i].centroid = items[i].box.center();
-                items[i].index = std::uint32_t(i);
-                part.add(items[i]);
+                const aabb box = packed_bounds(prims[i]);
+                const detail::build_item& item = *::new (static_cast<void*>(first + i))
+                    detail::build_item{box, box.center(), std::uint32_t(i)};
+                part.add(item);
                 spheres = spheres || (prims[i].id & sphere_flag) != 0;
             }
             const std::lock_guard<std::mutex> lock(all_mutex);
@@ -103,31 +110,25 @@ public:
         });
         const aabb& scene_box = all.box;
         detail::build_tasks tasks;
-        detail::binary_builder builder(items, used, threads > 1 ? &tasks : nullptr, prims);
-        builder.nodes.reserve(count);
-        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(count));
+        detail::binary_node_store binary;
+        detail::binary_builder builder(items, binary, used, threads > 1 ? &tasks : nullptr, prims);
         detail::binary_child root;
         tasks.run(threads, [&] {
-            if (budget > 0) {
-                detail::build_item_array refs;
-                refs.swap(items);
-                items.reserve(refs.size() + budget);
-                root = builder.build_spatial(std::move(refs), 0, detail::half_area(scene_box), budget, &all);
-            } else {
-                root = builder.build(0, items.size(), scene_box, 0);
-            }
+            if (budget > 0)
+                root = builder.build_spatial_root(count, detail::half_area(scene_box), budget, all);
+            else
+                root = builder.build(0, count, scene_box, 0);
         });
-        stats_.references = items.size();
+        stats_.references = items.used();
         stats_.spatial_splits = builder.spatial_splits;
-        const detail::binary_node_array& binary = builder.nodes;
         const real root_area = detail::half_area(scene_box);
         stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;
-        stats_.binary_nodes = binary.size();
+        stats_.binary_nodes = builder.node_count;
 
-        nodes_.reserve(binary.size() / 2 + 1);
+        nodes_.reserve(builder.node_count / 2 + 1);
         detail::wide_collapser(binary, nodes_, stats_).collapse(root, 0);
         stats_.nodes = nodes_.size();
-        pack_blocks(prims, items, threads);
+        pack_blocks(prims, items.data(), threads);
     }
 
     /// The same, over a vector.
@@ -188,7 +189,7 @@ private:
     /// go, one pass over the nodes, then the blocks themselves on threads
     /// (parallel_fill.hpp). A leaf's reference becomes its first block; count
     /// stays its number of primitives.
-    void pack_blocks(const packed_primitive* prims, const detail::build_item_array& items, int threads)
+    void pack_blocks(const packed_primitive* prims, const detail::build_item* items, int threads)
     {
         struct leaf_blocks {
             std::uint32_t first_item, count, first_block;

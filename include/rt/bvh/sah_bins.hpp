@@ -327,6 +327,19 @@ private:
 #endif
 };
 
+/// The bounds of n items, in one pass in registers (side_gatherer; gathered
+/// while they were pushed to their side, they were stored and reloaded
+/// around every push_back).
+inline side_bounds bounds_of(const build_item* items, std::size_t n)
+{
+    side_gatherer<true> on;
+    for (std::size_t i = 0; i < n; ++i)
+        on.take(items[i]);
+    side_bounds out;
+    on.finish(out);
+    return out;
+}
+
 /// Moves the items that s.left_of sends left before the others and returns
 /// how many went left; `left` and `right` receive each side's bounds, found
 /// in the same pass (the children's boxes are their items', whatever the bins

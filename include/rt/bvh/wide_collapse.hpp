@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../aabb.hpp"
+#include "build_store.hpp"
 #include "build_options.hpp"
 #include "layout.hpp"
 #include "parallel_fill.hpp"
@@ -22,7 +23,7 @@ namespace detail {
 /// child's two children, until it has bvh_width. Nodes come out depth first.
 class wide_collapser {
 public:
-    wide_collapser(const binary_node_array& binary, large_array<bvh_node>& nodes, bvh_stats& stats)
+    wide_collapser(const binary_node_store& binary, large_array<bvh_node>& nodes, bvh_stats& stats)
         : binary_(binary), nodes_(nodes), stats_(stats)
     {
     }
@@ -76,7 +77,7 @@ public:
     }
 
 private:
-    const binary_node_array& binary_;
+    const binary_node_store& binary_;
     large_array<bvh_node>& nodes_;
     bvh_stats& stats_;
 };
