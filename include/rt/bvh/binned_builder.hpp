@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <new>
 #include <utility>
 #include <vector>
@@ -40,30 +41,25 @@ namespace detail {
 /// Speed: one pass over a node's primitives bins them on all three axes at
 /// once (sah_bins.hpp), its two halves on two threads for a node of 65,536 or
 /// more; a node of 4,096 or more offers its right child to an idle thread
-/// (build_tasks.hpp; bvh_options::threads). Nodes go to one shared store
-/// (binary_nodes.hpp); the tree is the same whatever the number of threads.
+/// (build_tasks.hpp; bvh_options::threads). Nodes and references go to shared
+/// stores (build_store.hpp); the tree is the same whatever the number of threads.
 class binary_builder {
 public:
     /// A builder over `items`; `tasks` (nullptr: one thread) shares its large
-    /// nodes' subtrees among threads. Call build() or build_spatial() inside
-    /// tasks->run().
+    /// nodes' subtrees among threads. Call build() or build_spatial_root()
+    /// inside tasks->run().
     binary_builder(item_pool& items, binary_node_store& nodes, const bvh_options& options, build_tasks* tasks,
                    const packed_primitive* prims = nullptr)
         : items_(items), nodes_(nodes), options_(options), tasks_(tasks), prims_(prims),
           bin_count_(std::size_t(std::max(2, std::min(options.bins, 256)))),
           slice_count_(std::size_t(std::max(2, std::min(options.spatial_bins, 256)))),
-          bins_(bin_count_, options.primitives_per_test), other_bins_(bin_count_, options.primitives_per_test)
-    {
-    }
+          bins_(bin_count_, options.primitives_per_test) {}
 
     /// Below this many primitives a subtree is not worth a thread.
     static constexpr std::size_t parallel_threshold = 4096;
 
     /// The threads a build over n primitives uses: one for a tree too small to fork.
-    static int threads_for(std::size_t n, int requested)
-    {
-        return n < parallel_threshold ? 1 : thread_count(requested);
-    }
+    static int threads_for(std::size_t n, int requested) { return n < parallel_threshold ? 1 : thread_count(requested); }
 
     std::size_t node_count = 0; ///< the nodes this builder and the builders it joined made
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
@@ -297,9 +293,7 @@ private:
     /// Whether a node's binning, spatial search and move to the sides run in two halves.
     bool in_halves(std::size_t n) const { return n >= parallel_binning_threshold && tasks_ != nullptr; }
 
-    /// The leaf tests that n primitives cost: ceil(n / primitives_per_test)
-    /// (the SIMD leaf test handles a block of four triangles at the price of
-    /// about one; Embree's SAH counts its triangle4 blocks the same way).
+    /// The leaf tests that n primitives cost (leaf_tests, build_options.hpp).
     real tests(std::size_t n) const { return leaf_tests(n, options_.primitives_per_test); }
 
     split find_split(const build_item* items, std::size_t n, const aabb& centroids)
@@ -307,10 +301,12 @@ private:
         const std::size_t used = bins_for(n, bin_count_);
         bins_.reset(centroids, used);
         if (in_halves(n)) {
-            other_bins_.reset(centroids, used);
-            auto second_half = [&] { other_bins_.add(items + n / 2, n - n / 2); };
+            if (!other_bins_) // only the top of a large tree bins in halves
+                other_bins_ = std::make_unique<sah_bins>(bin_count_, options_.primitives_per_test);
+            other_bins_->reset(centroids, used);
+            auto second_half = [&] { other_bins_->add(items + n / 2, n - n / 2); };
             tasks_->fork(second_half, [&] { bins_.add(items, n / 2); });
-            bins_.merge(other_bins_);
+            bins_.merge(*other_bins_);
         } else {
             bins_.add(items, n);
         }
@@ -321,9 +317,13 @@ private:
     /// binned in two halves on two threads from parallel_binning_threshold on.
     spatial_split find_spatial_split(const build_item* refs, std::size_t n, const aabb& box, const bool wide[3])
     {
-        spatial_bins bins(box, wide, slice_count_);
+        if (!spatial_bins_)
+            spatial_bins_ = std::make_unique<spatial_bins>(slice_count_);
+        spatial_bins& bins = *spatial_bins_;
+        bins.reset(box, wide);
         if (in_halves(n)) {
-            spatial_bins other(box, wide, slice_count_);
+            spatial_bins other(slice_count_);
+            other.reset(box, wide);
             auto second_half = [&] { other.add(refs + n / 2, n - n / 2, prims_); };
             tasks_->fork(second_half, [&] { bins.add(refs, n / 2, prims_); });
             bins.merge(other);
@@ -390,7 +390,9 @@ private:
     const packed_primitive* prims_; ///< for clipped_box (spatial splits only)
     std::size_t bin_count_;
     std::size_t slice_count_; ///< the spatial search's slices per axis (bvh_options::spatial_bins)
-    sah_bins bins_, other_bins_; ///< other_bins_: the second half's, when two threads bin a node
+    sah_bins bins_;
+    std::unique_ptr<sah_bins> other_bins_; ///< the second half's, when two threads bin a node
+    std::unique_ptr<spatial_bins> spatial_bins_; ///< find_spatial_split's, made at its first search
 };
 
 } // namespace detail
