@@ -228,7 +228,7 @@ private:
                     }
                 }
             },
-            4096);
+            1024);
     }
 
     template <bool any_hit, bool scalar>
