@@ -262,7 +262,7 @@ TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, 
         bool any = false;
         for (const real tmax : {rt::infinity, real(1)}) { // t = 1 is where the targets are
             for (const rt::triangle_block& b : blocks) {
-                rt::triangle_hit simd[4];
+                rt::detail::block_hits simd;
                 const int mask = rt::detail::intersect_block(b, leaf, w, 0, tmax, simd);
                 for (int lane = 0; lane < 4; ++lane) {
                     ++lane_tests;
@@ -278,8 +278,8 @@ TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, 
                     bool same = got == expected;
                     if (same && got) {
                         ++hits;
-                        same = simd[lane].t == scalar.t && simd[lane].b0 == scalar.b0 && simd[lane].b1 == scalar.b1 &&
-                               simd[lane].b2 == scalar.b2;
+                        same = simd.t[lane] == scalar.t && simd.b0[lane] == scalar.b0 && simd.b1[lane] == scalar.b1 &&
+                               simd.b2[lane] == scalar.b2;
                     }
                     disagreements += same ? 0 : 1;
                     any = any || got;

@@ -260,7 +260,7 @@ private:
                 // so the closest hit does not depend on the order of the lanes
                 const triangle_block* block = blocks_.data() + (child & ~leaf_flag);
                 for (std::uint32_t done = 0; done < count; done += 4, ++block) {
-                    triangle_hit hits[4];
+                    detail::block_hits hits;
                     int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
                                       : detail::intersect_block<!any_hit>(*block, lr, wr, tmin, closest_t, hits);
                     if (mask != 0 && any_hit)
@@ -271,19 +271,18 @@ private:
                         // best written field by field: a primitive_hit built
                         // and copied whole was stored in parts and reloaded
                         // at once, a store-forwarding stall
-                        const triangle_hit& h = hits[lane];
                         const std::uint32_t id = block->id[lane];
-                        if (!found || replaces(h.t, id, best)) {
-                            best.t = h.t;
-                            best.b0 = h.b0;
-                            best.b1 = h.b1;
-                            best.b2 = h.b2;
+                        if (!found || replaces(hits.t[lane], id, best)) {
+                            best.t = hits.t[lane];
+                            best.b0 = hits.b0[lane];
+                            best.b1 = hits.b1[lane];
+                            best.b2 = hits.b2[lane];
                             best.id = id;
                             best.corners = &block->v[0][lane];
                             best.stride = 4;
                             best.normal = &block->n[lane];
                             found = true;
-                            closest_t = h.t;
+                            closest_t = hits.t[lane];
                         }
                     }
                     if (!has_spheres_) // most scenes: no need to look at the ids

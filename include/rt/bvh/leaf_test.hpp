@@ -69,6 +69,32 @@ inline int intersect_block_scalar(const triangle_block& b, const watertight_ray&
     return mask;
 }
 
+/// A block's hits lane by lane, as the SIMD test stores them (t[l] is lane
+/// l's t): four stores for the four lanes, and nothing written for a block
+/// that no lane hits.
+struct block_hits {
+    alignas(16) real t[4];
+    alignas(16) real b0[4];
+    alignas(16) real b1[4];
+    alignas(16) real b2[4];
+};
+
+/// intersect_block_scalar, its hits as block_hits.
+inline int intersect_block_scalar(const triangle_block& b, const watertight_ray& w, real tmin, real tmax,
+                                  block_hits& hits)
+{
+    triangle_hit lanes[4];
+    const int mask = intersect_block_scalar(b, w, tmin, tmax, lanes);
+    for (int lane = 0; lane < 4; ++lane)
+        if (mask & (1 << lane)) {
+            hits.t[lane] = lanes[lane].t;
+            hits.b0[lane] = lanes[lane].b0;
+            hits.b1[lane] = lanes[lane].b1;
+            hits.b2[lane] = lanes[lane].b2;
+        }
+    return mask;
+}
+
 /// The lanes of `b` that hold spheres (bit l for lane l).
 inline int sphere_lanes(const triangle_block& b)
 {
@@ -135,10 +161,11 @@ inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 /// within its error bound leaves SIMD, for t_beyond_error_in_double. Needs
 /// -ffp-contract=off on FMA targets, as the scalar test does: a fused
 /// multiply-add would round the shear differently here and there. With
-/// `with_hits` false (any hit) only the mask is computed, hits[] is not written.
+/// `with_hits` false (any hit) only the mask is computed and `hits` is not
+/// written; else all four lanes are, and the lanes of the mask are the hits.
 template <bool with_hits = true>
 RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, float tmin,
-                                      float tmax, triangle_hit hits[4])
+                                      float tmax, block_hits& hits)
 {
     const __m128 zero = _mm_setzero_ps();
     // corners translated to the origin and permuted: x (kx), y (ky), z (kz);
@@ -216,18 +243,10 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
             mask &= ~(1 << lane);
     if (!with_hits || mask == 0)
         return mask;
-    alignas(16) float out[4][4];
-    _mm_store_ps(out[0], t);
-    _mm_store_ps(out[1], _mm_mul_ps(U, inv_det));
-    _mm_store_ps(out[2], _mm_mul_ps(V, inv_det));
-    _mm_store_ps(out[3], _mm_mul_ps(W, inv_det));
-    for (int lane = 0; lane < 4; ++lane)
-        if (mask & (1 << lane)) {
-            hits[lane].t = out[0][lane];
-            hits[lane].b0 = out[1][lane];
-            hits[lane].b1 = out[2][lane];
-            hits[lane].b2 = out[3][lane];
-        }
+    _mm_store_ps(hits.t, t);
+    _mm_store_ps(hits.b0, _mm_mul_ps(U, inv_det));
+    _mm_store_ps(hits.b1, _mm_mul_ps(V, inv_det));
+    _mm_store_ps(hits.b2, _mm_mul_ps(W, inv_det));
     return mask;
 }
 #endif
@@ -236,7 +255,7 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
 /// else intersect_block_scalar. Both give the same bits.
 template <bool with_hits = true>
 RT_BVH_INLINE int intersect_block(const triangle_block& b, const leaf_ray& r, const watertight_ray& w, real tmin,
-                                  real tmax, triangle_hit hits[4])
+                                  real tmax, block_hits& hits)
 {
 #if RT_BVH_SSE
     return intersect_block_sse<with_hits>(b, r, w, tmin, tmax, hits);
