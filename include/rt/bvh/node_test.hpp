@@ -49,7 +49,7 @@ inline const real* bounds_row(const bvh_node& node, std::size_t offset)
     return reinterpret_cast<const real*>(reinterpret_cast<const char*>(node.bounds) + offset);
 }
 
-inline node_ray make_node_ray(const ray& r)
+RT_BVH_INLINE node_ray make_node_ray(const ray& r)
 {
     const box_ray b = make_box_ray(r);
     node_ray n;
