@@ -341,6 +341,35 @@ TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box n
     CHECK(outside == 0);
 }
 
+TEST_CASE("a spatial budget out of range is held in [0, 4] times the primitives: no overflow, no allocation beyond it")
+{
+    rt::mesh m = icosphere(2, vec3(0), 1);
+    const vec3 d = glm::normalize(vec3(1, 1, real(0.5)));
+    for (vec3& v : m.positions)
+        v += real(39) * glm::dot(v, d) * d; // long slanted triangles, as above
+    const rt::scene s = scene_of(m);
+    const std::size_t n = m.triangles.size();
+    for (const real asked : {real(-1), std::numeric_limits<real>::quiet_NaN(), real(100), rt::infinity}) {
+        CAPTURE(asked);
+        rt::bvh_options options;
+        options.spatial_budget = asked;
+        options.spatial_overlap = 0;
+        options.spatial_bins = 32;
+        const rt::accelerator tree(s, rt::accelerator_kind::bvh, options);
+        const std::size_t refs = tree.stats().references;
+        if (!(asked > 0)) {
+            INFO("expected a negative or NaN budget to turn spatial splits off, found " << refs << " references for "
+                                                                                         << n << " triangles");
+            CHECK(refs == n);
+        } else {
+            INFO("expected at most 5 references a triangle (a budget of 4), found " << refs << " for " << n
+                                                                                   << " triangles");
+            CHECK(refs > n);
+            CHECK(refs <= 5 * n);
+        }
+    }
+}
+
 TEST_CASE("a BVH with spatial splits: every ray through a closed mesh's edges and vertices hits, and hits as the list")
 {
     // An icosphere stretched 40 times along a diagonal: long thin slanted

@@ -29,7 +29,8 @@ struct bvh_options {
     int max_depth = 60;               ///< a node this deep in the binary tree becomes a leaf
     int threads = 0;                  ///< threads for the build; 0: one per core (the tree is the same)
     /// Spatial splits (see binary_builder::build_spatial): at most this many
-    /// extra references, as a fraction of the primitives; 0 turns them off.
+    /// extra references, as a fraction of the primitives (taken in [0, 4]:
+    /// the build reserves room for them); 0 turns them off.
     real spatial_budget = real(0.3);
     /// A node tries spatial splits when its best object split's children
     /// overlap by more than this fraction of the root's surface area. Stich

@@ -88,8 +88,11 @@ public:
         const int threads = detail::binary_builder::threads_for(count, used.threads);
 
         // the references: the primitives' boxes first, then (spatial splits)
-        // pieces of them, at most `budget` more (build_store.hpp)
-        std::size_t budget = std::size_t(std::max(real(0), used.spatial_budget) * real(count));
+        // pieces of them, at most `budget` more (build_store.hpp); the
+        // fraction held in [0, 4], a NaN taken as 0
+        const real asked = used.spatial_budget;
+        const real fraction = asked > real(4) ? real(4) : asked > 0 ? asked : real(0);
+        std::size_t budget = std::size_t(double(fraction) * double(count));
         detail::item_pool items(count + budget);
         detail::build_item* const first = items.data() + items.claim(count);
         detail::side_bounds all; // the items' box, centroids and widest extents, for build_spatial
