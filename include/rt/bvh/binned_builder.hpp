@@ -59,7 +59,7 @@ public:
     static constexpr std::size_t parallel_threshold = 4096;
 
     /// The threads a build over n primitives uses: one for a tree too small to fork.
-    static int threads_for(std::size_t n, int requested) { return n < parallel_threshold ? 1 : thread_count(requested); }
+    static int threads_for(std::size_t n, int asked) { return n < parallel_threshold ? 1 : thread_count(asked); }
 
     std::size_t node_count = 0; ///< the nodes this builder and the builders it joined made
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area

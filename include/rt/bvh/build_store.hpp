@@ -40,6 +40,7 @@
 namespace rt {
 namespace detail {
 
+/// The binary tree's nodes (see the top of this file).
 class binary_node_store {
 public:
     /// Indices a builder takes at a time (16 KB of nodes).
@@ -108,7 +109,10 @@ private:
 /// not initialised: a range holds build_items once claimed and copied to.
 class item_pool {
 public:
-    explicit item_pool(std::size_t capacity) : data_(allocator().allocate(std::max<std::size_t>(capacity, 1))), capacity_(capacity) {}
+    explicit item_pool(std::size_t capacity)
+        : data_(allocator().allocate(std::max<std::size_t>(capacity, 1))), capacity_(capacity)
+    {
+    }
     item_pool(const item_pool&) = delete;
     item_pool& operator=(const item_pool&) = delete;
     ~item_pool() { allocator().deallocate(data_, std::max<std::size_t>(capacity_, 1)); }

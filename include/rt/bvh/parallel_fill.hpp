@@ -10,12 +10,14 @@
 // filled by fill_in_parallel, each thread writing contiguous parts: the page
 // faults are shared by the threads as well (docs/performance.md, experiment 6).
 //
-// The arrays traversal reads (the wide nodes, the leaf blocks) use
-// large_array_allocator: an array of 8 MB or more is mapped on its own and
-// marked for transparent huge pages (2 MB pages, where the kernel offers them,
-// as Embree's allocator does: common/sys/alloc.cpp, os_malloc). With 4 KB
-// pages the second-level TLB reaches 6 MB (1,536 entries), so incoherent rays
-// through a larger tree wait for page walks: bunny-loop2's (85 MB) gain 20%.
+// The arrays traversal reads (the wide nodes, the leaf blocks) and the
+// build's own (its references) use large_array_allocator: an array of 8 MB or
+// more is mapped on its own and marked for transparent huge pages (2 MB pages,
+// where the kernel offers them, as Embree's allocator does:
+// common/sys/alloc.cpp, os_malloc). With 4 KB pages the second-level TLB
+// reaches 6 MB (1,536 entries), so incoherent rays through a larger tree wait
+// for page walks (bunny-loop2's, 85 MB, gain 15-20%), and a huge page is
+// cleared at a fifth of the cost of 512 small ones.
 //
 //     std::vector<T, rt::detail::default_init_allocator<T>> out(n); // nothing written yet
 //     rt::detail::fill_in_parallel(n, threads, [&](std::size_t begin, std::size_t end) {
@@ -71,14 +73,11 @@ struct default_init_allocator : std::allocator<T> {
     }
 };
 
-/// Calls fill(begin, end) on contiguous ranges that cover [0, n) once, on
-/// `threads` threads (see the top of this file); on this thread alone when
-/// n is small or threads is 1. Ranges of at least `grain` elements.
-/// default_init_allocator for the arrays traversal reads (see the top of this
-/// file): from huge_page_threshold bytes on Linux, an array of its own mapping,
-/// 2 MB aligned and marked MADV_HUGEPAGE (a hint: ignored where transparent
-/// huge pages are off); elsewhere, and for smaller arrays, operator new,
-/// aligned to a cache line.
+/// default_init_allocator for the large arrays of a tree and its build (see
+/// the top of this file): from huge_page_threshold bytes on Linux, an array of
+/// its own mapping, 2 MB aligned and marked MADV_HUGEPAGE (a hint: ignored
+/// where transparent huge pages are off); elsewhere, and for smaller arrays,
+/// operator new, aligned to a cache line.
 template <class T>
 struct large_array_allocator : default_init_allocator<T> {
     template <class U>
@@ -99,7 +98,7 @@ struct large_array_allocator : default_init_allocator<T> {
 
     T* allocate(std::size_t n)
     {
-        if (n > std::size_t(-1) / sizeof(T))
+        if (n > (std::size_t(-1) - 2 * huge_page) / sizeof(T)) // mapped_bytes(n) + huge_page must not wrap
             throw std::bad_array_new_length();
 #if defined(__linux__)
         if (n * sizeof(T) >= huge_page_threshold) {
@@ -151,6 +150,9 @@ private:
 template <class T>
 using large_array = std::vector<T, large_array_allocator<T>>;
 
+/// Calls fill(begin, end) on contiguous ranges that cover [0, n) once, on
+/// `threads` threads (see the top of this file); on this thread alone when
+/// n is small or threads is 1. Ranges of at least `grain` elements.
 template <class Fill>
 void fill_in_parallel(std::size_t n, int threads, Fill&& fill, std::size_t grain = 16384)
 {
