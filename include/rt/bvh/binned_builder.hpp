@@ -139,25 +139,10 @@ public:
             right_centroids = r.centroids;
         }
 
-        binary_node* node = nullptr; // stays where it is (build_store.hpp)
-        const std::uint32_t index = new_node(node);
-        sah_cost += double(options_.traversal_cost) * double(area);
-        binary_child left, right;
-        if (n >= parallel_threshold && tasks_ != nullptr) {
-            // the right half sorts its own range of items_ in place
-            build_in_parallel(
-                left, right, [&] { return build(begin, middle, left_box, depth + 1, nullptr, &left_centroids); },
-                [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1, nullptr, &right_centroids); });
-        } else {
-            left = build(begin, middle, left_box, depth + 1, nullptr, &left_centroids);
-            right = build(middle, end, right_box, depth + 1, nullptr, &right_centroids);
-        }
-        node->side[0] = left;
-        node->side[1] = right;
-        binary_child inner;
-        inner.box = box;
-        inner.index = index;
-        return inner;
+        // the right half sorts its own range of items_ in place
+        return inner_node(
+            box, area, n, [&] { return build(begin, middle, left_box, depth + 1, nullptr, &left_centroids); },
+            [&](binary_builder& b) { return b.build(middle, end, right_box, depth + 1, nullptr, &right_centroids); });
     }
 
 private:
@@ -230,7 +215,7 @@ private:
         if (owned != nullptr)
             build_item_array().swap(*owned);
         else
-            items_.release_after(0); // the root's items are on its sides now
+            items_.release_all(); // the root's items are on its sides now
         build_item_array left = std::move(parts.left), right = std::move(parts.right);
 
         // the budget left is shared by the children in proportion to their
@@ -239,24 +224,9 @@ private:
             std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
         std::size_t left_budget = budget - right_budget;
         budget = 0;
-        binary_node* node = nullptr; // stays where it is (build_store.hpp)
-        const std::uint32_t index = new_node(node);
-        sah_cost += double(options_.traversal_cost) * double(half_area(box));
-        binary_child l, r;
-        if (n >= parallel_threshold && tasks_ != nullptr) {
-            build_in_parallel(
-                l, r, [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
-                [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
-        } else {
-            l = build_spatial(std::move(left), depth + 1, root_area, left_budget);
-            r = build_spatial(std::move(right), depth + 1, root_area, right_budget);
-        }
-        node->side[0] = l;
-        node->side[1] = r;
-        binary_child inner;
-        inner.box = box;
-        inner.index = index;
-        return inner;
+        return inner_node(
+            box, half_area(box), n, [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
+            [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
     }
 
     /// A new node's index, in this builder's run of the store, and `at` the node.
@@ -270,6 +240,30 @@ private:
         at = ::new (static_cast<void*>(run_at_++)) binary_node;
         ++node_count;
         return next_node_++;
+    }
+
+    /// A new inner node over `box` (of `area`, n references) with the children
+    /// build_left() and build_right(b) make: on two threads from
+    /// parallel_threshold references on (build_in_parallel), else here, left first.
+    template <class Left, class Right>
+    binary_child inner_node(const aabb& box, real area, std::size_t n, const Left& build_left, const Right& build_right)
+    {
+        binary_node* node = nullptr; // stays where it is (build_store.hpp)
+        const std::uint32_t index = new_node(node);
+        sah_cost += double(options_.traversal_cost) * double(area);
+        binary_child left, right;
+        if (n >= parallel_threshold && tasks_ != nullptr) {
+            build_in_parallel(left, right, build_left, build_right);
+        } else {
+            left = build_left();
+            right = build_right(*this);
+        }
+        node->side[0] = left;
+        node->side[1] = right;
+        binary_child inner;
+        inner.box = box;
+        inner.index = index;
+        return inner;
     }
 
     /// Builds a node's left child here (build_left()) while its right child

@@ -136,8 +136,8 @@ public:
     }
     /// The items claimed so far (after the build: its references).
     std::size_t used() const { return used_.load(); }
-    /// Forgets every claim after the first n (the root's items, once copied to its sides).
-    void release_after(std::size_t n) { used_.store(n); }
+    /// Forgets every claim (the root's items, once copied to its sides).
+    void release_all() { used_.store(0); }
 
 private:
     static large_array_allocator<build_item> allocator() { return {}; }
