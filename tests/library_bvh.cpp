@@ -341,6 +341,76 @@ TEST_CASE("a spatial split's piece holds its part of the triangle: clipped_box n
     CHECK(outside == 0);
 }
 
+TEST_CASE("the spatial search's slices hold the part of a triangle in them, and no more")
+{
+    // A random triangle across 8 slices of its box: each slice's box is the
+    // box of the triangle's part between the slice's planes (its corners
+    // there and where its edges cross the planes, computed here in double),
+    // up to float rounding. Not the triangle's box cut to the slice, which is
+    // larger for a slanted triangle: the search would then see no gain in
+    // cutting it. Every fourth triangle has an edge parallel to the planes.
+    std::mt19937 random(29);
+    std::uniform_real_distribution<double> coordinate(-1000, 1000);
+    std::size_t slices = 0, wrong = 0;
+    for (int k = 0; k < 1000; ++k) {
+        vec3 corner[3];
+        for (vec3& c : corner)
+            c = vec3{real(coordinate(random)), real(coordinate(random)), real(coordinate(random))};
+        const int axis = k % 3;
+        if (k % 4 == 0)
+            corner[1][axis] = corner[0][axis];
+        const rt::packed_primitive p = rt::pack_triangle(corner[0], corner[1], corner[2], 0);
+        const rt::aabb box = rt::packed_bounds(p);
+        const rt::detail::build_item ref{box, box.center(), 0};
+        rt::detail::spatial_bins bins(8);
+        const bool wide[3] = {axis == 0, axis == 1, axis == 2};
+        bins.reset(box, wide);
+        bins.add(&ref, 1, &p);
+        const double tolerance = 1e-3; // a few float roundings of coordinates up to 1000 (an ulp: 6e-5)
+        for (std::size_t b = 0; b < 8; ++b) {
+            const double s0 = double(bins.plane(axis, b)), s1 = double(bins.plane(axis, b + 1));
+            double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+            const auto grow = [&](const double q[3]) {
+                for (int i = 0; i < 3; ++i) {
+                    lo[i] = std::min(lo[i], q[i]);
+                    hi[i] = std::max(hi[i], q[i]);
+                }
+            };
+            for (int c = 0; c < 3; ++c) {
+                const vec3& u = corner[c];
+                const vec3& v = corner[(c + 1) % 3];
+                const double q[3] = {double(u.x), double(u.y), double(u.z)};
+                if (s0 <= q[axis] && q[axis] <= s1)
+                    grow(q);
+                for (const double s : {s0, s1}) {
+                    const double a = double(u[axis]), e = double(v[axis]);
+                    if ((a < s && s < e) || (e < s && s < a)) {
+                        const double t = (s - a) / (e - a);
+                        double x[3];
+                        for (int i = 0; i < 3; ++i)
+                            x[i] = double(u[i]) + t * (double(v[i]) - double(u[i]));
+                        grow(x);
+                    }
+                }
+            }
+            if (lo[0] > hi[0]) // the triangle does not reach this slice
+                continue;
+            ++slices;
+            const rt::aabb& got = bins.slice(axis, b);
+            bool same = !got.empty();
+            for (int i = 0; i < 3 && same; ++i)
+                same = std::abs(double(got.lo[i]) - lo[i]) <= tolerance && std::abs(double(got.hi[i]) - hi[i]) <= tolerance;
+            if (!same && wrong++ < 3)
+                MESSAGE("slice " << b << " on axis " << axis << ": expected the box of the triangle's part there, "
+                                 << "(" << lo[0] << " " << lo[1] << " " << lo[2] << ") .. (" << hi[0] << " " << hi[1]
+                                 << " " << hi[2] << "), found " << got);
+        }
+    }
+    MESSAGE(slices << " slices of 1000 triangles, " << wrong << " not the box of the triangle's part");
+    CHECK(slices > 4000);
+    CHECK(wrong == 0);
+}
+
 TEST_CASE("a spatial budget out of range is held in [0, 4] times the primitives: no overflow, no allocation beyond it")
 {
     rt::mesh m = icosphere(2, vec3(0), 1);

@@ -156,6 +156,11 @@ public:
             }
     }
 
+    /// Slice b's box on `axis` and the plane below it (slice b lies between
+    /// plane(axis, b) and plane(axis, b + 1)), after add(): for the tests.
+    const aabb& slice(int axis, std::size_t b) const { return slice_[std::size_t(axis) * count_ + b]; }
+    real plane(int axis, std::size_t b) const { return planes_[std::size_t(axis) * (count_ + 1) + b]; }
+
     /// The plane of least SAH cost for the n references binned.
     spatial_split best(std::size_t n, std::size_t per_test)
     {
@@ -256,36 +261,56 @@ private:
             // where an edge crosses a plane to the slices on both sides,
             // all held inside the reference's box.
 #if RT_BVH_SSE
-            // the same points in SSE, into the slice boxes of the narrow
-            // references: a corner is loaded as x y z and the next float
-            // (the next corner's x, or the id's bits), a lane never read
-            static_assert(offsetof(packed_primitive, id) == 9 * sizeof(float), "corner c is v[3 c .. 3 c + 2]");
+            // The same points in SSE without a branch: the three edges in
+            // three lanes, each clipped to each slice's slab [s0, s1] by its
+            // parameter range there (Liang, Barsky, "A New Concept and Method
+            // for Line Clipping", ACM TOG 3(1), 1984); the ends of the pieces
+            // are the corners in the slice and the crossings of its planes.
+            // Branches on the edges' slices were mispredicted, a third of the
+            // search's time (docs/performance.md, experiment 6).
+            const __m128 ux = _mm_setr_ps(p.v[0], p.v[3], p.v[6], p.v[6]);
+            const __m128 uy = _mm_setr_ps(p.v[1], p.v[4], p.v[7], p.v[7]);
+            const __m128 uz = _mm_setr_ps(p.v[2], p.v[5], p.v[8], p.v[8]);
+            const __m128 dx = _mm_sub_ps(_mm_setr_ps(p.v[3], p.v[6], p.v[0], p.v[0]), ux);
+            const __m128 dy = _mm_sub_ps(_mm_setr_ps(p.v[4], p.v[7], p.v[1], p.v[1]), uy);
+            const __m128 dz = _mm_sub_ps(_mm_setr_ps(p.v[5], p.v[8], p.v[2], p.v[2]), uz);
+            const __m128 ua = axis == 0 ? ux : axis == 1 ? uy : uz, da = axis == 0 ? dx : axis == 1 ? dy : dz;
+            const __m128 inverse = _mm_div_ps(_mm_set1_ps(1), da); // one division for the three edges
+            const __m128 flat = _mm_cmpeq_ps(da, _mm_setzero_ps()); // an edge in a plane of the slices
             const __m128 box_lo = _mm_loadu_ps(&r.box.lo.x), box_hi = _mm_loadu_ps(&r.box.hi.x);
-            const auto held = [&](__m128 q) { return _mm_min_ps(box_hi, _mm_max_ps(box_lo, q)); }; // glm::clamp
-            const auto grow = [&](std::size_t k, __m128 q) {
-                narrow_box& box = narrow_[set + k];
-                box.lo = _mm_min_ps(q, box.lo);
-                box.hi = _mm_max_ps(q, box.hi);
+            const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1);
+            const __m128 none_lo = _mm_set1_ps(std::numeric_limits<float>::infinity());
+            const __m128 none_hi = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+            const auto pick = [](__m128 mask, __m128 yes, __m128 no) { // SSE2's select
+                return _mm_or_ps(_mm_and_ps(mask, yes), _mm_andnot_ps(mask, no));
             };
-            for (int c = 0; c < 3; ++c) {
-                const int j = (c + 1) % 3;
-                __m128 a = _mm_loadu_ps(p.v + 3 * c), b = _mm_loadu_ps(p.v + 3 * j);
-                real a_axis = p.v[3 * c + axis], b_axis = p.v[3 * j + axis];
-                grow(std::max(first, std::min(last, slot(a_axis))), held(a));
-                if (a_axis > b_axis) {
-                    std::swap(a, b);
-                    std::swap(a_axis, b_axis);
-                }
-                const std::size_t from = std::max(first, slot(a_axis)), to = std::min(last, slot(b_axis));
-                if (from >= to)
-                    continue;
-                const real inverse = real(1) / (b_axis - a_axis); // one division per edge
-                const __m128 ab = _mm_sub_ps(b, a);
-                for (std::size_t k = from + 1; k <= to; ++k) {
-                    const __m128 q = held(_mm_add_ps(a, _mm_mul_ps(ab, _mm_set1_ps((planes[k] - a_axis) * inverse))));
-                    grow(k - 1, q);
-                    grow(k, q);
-                }
+            for (std::size_t b = first; b <= last; ++b) {
+                const __m128 s0 = _mm_set1_ps(planes[b]), s1 = _mm_set1_ps(planes[b + 1]);
+                const __m128 t0 = _mm_mul_ps(_mm_sub_ps(s0, ua), inverse);
+                const __m128 t1 = _mm_mul_ps(_mm_sub_ps(s1, ua), inverse);
+                __m128 from = _mm_max_ps(zero, _mm_min_ps(t0, t1)), to = _mm_min_ps(one, _mm_max_ps(t0, t1));
+                const __m128 in_slab = _mm_and_ps(_mm_cmple_ps(s0, ua), _mm_cmple_ps(ua, s1));
+                from = pick(flat, zero, from);
+                to = pick(flat, pick(in_slab, one, _mm_set1_ps(-1)), to);
+                const __m128 valid = _mm_cmple_ps(from, to); // false for a NaN too
+                // the two ends of each edge's piece, an invalid lane as the empty box
+                const auto end_lo = [&](__m128 u, __m128 d) {
+                    const __m128 p0 = _mm_add_ps(u, _mm_mul_ps(from, d)), p1 = _mm_add_ps(u, _mm_mul_ps(to, d));
+                    return pick(valid, _mm_min_ps(p0, p1), none_lo);
+                };
+                const auto end_hi = [&](__m128 u, __m128 d) {
+                    const __m128 p0 = _mm_add_ps(u, _mm_mul_ps(from, d)), p1 = _mm_add_ps(u, _mm_mul_ps(to, d));
+                    return pick(valid, _mm_max_ps(p0, p1), none_hi);
+                };
+                __m128 lx = end_lo(ux, dx), ly = end_lo(uy, dy), lz = end_lo(uz, dz), lw = none_lo;
+                __m128 hx = end_hi(ux, dx), hy = end_hi(uy, dy), hz = end_hi(uz, dz), hw = none_hi;
+                _MM_TRANSPOSE4_PS(lx, ly, lz, lw); // lanes of x, y, z to registers of them
+                _MM_TRANSPOSE4_PS(hx, hy, hz, hw);
+                const __m128 lo = _mm_min_ps(_mm_min_ps(lx, ly), _mm_min_ps(lz, lw));
+                const __m128 hi = _mm_max_ps(_mm_max_ps(hx, hy), _mm_max_ps(hz, hw));
+                narrow_box& box = narrow_[set + b]; // held in the reference's box
+                box.lo = _mm_min_ps(box.lo, _mm_min_ps(box_hi, _mm_max_ps(box_lo, lo)));
+                box.hi = _mm_max_ps(box.hi, _mm_min_ps(box_hi, _mm_max_ps(box_lo, hi)));
             }
 #else
             const auto held = [&](const vec3& q) { return glm::clamp(q, r.box.lo, r.box.hi); };
