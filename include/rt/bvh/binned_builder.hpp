@@ -46,7 +46,7 @@ namespace detail {
 class binary_builder {
 public:
     /// A builder over `items`; `tasks` (nullptr: one thread) shares its large
-    /// nodes' subtrees among threads. Call build() or build_spatial_root()
+    /// nodes' subtrees among threads. Call build() or build_spatial()
     /// inside tasks->run().
     binary_builder(item_pool& items, binary_node_store& nodes, const bvh_options& options, build_tasks* tasks,
                    const packed_primitive* prims = nullptr)
@@ -65,28 +65,22 @@ public:
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area
     std::size_t spatial_splits = 0;
 
-    /// The top of the tree with spatial splits (Stich, Friedrich, Dietrich,
-    /// "Spatial Splits in Bounding Volume Hierarchies", HPG 2009). `refs` are
-    /// this node's references (moved in, freed before the children are
-    /// built). A node whose best object split leaves two children that
-    /// overlap by more than spatial_overlap of the root's area also bins its
-    /// references between planes that may cut them (find_spatial_split); if
-    /// that costs less by the SAH, a reference that straddles the plane goes
-    /// to both children, each with the box of its part (clipped_box). The
-    /// pieces are references to the same primitive, so a ray gets the same
-    /// hit whichever it meets. A node where the overlap is small, or whose
-    /// subtree is small, is handed to build(), in a range of items_ of its own.
-    /// `known_bounds`: the references' bounds (side_bounds), if the caller has them.
-    binary_child build_spatial(build_item_array refs, int depth, real root_area, std::size_t& budget,
-                               const side_bounds* known_bounds = nullptr)
-    {
-        return spatial_node(refs.data(), refs.size(), &refs, depth, root_area, budget, known_bounds);
-    }
+    std::size_t pieces = 0; ///< references added by spatial splits, beyond the primitives
 
-    /// build_spatial at the root, whose n references are items_[0, n) already.
-    binary_child build_spatial_root(std::size_t n, real root_area, std::size_t& budget, const side_bounds& bounds)
+    /// The tree with spatial splits at its top (Stich, Friedrich, Dietrich,
+    /// "Spatial Splits in Bounding Volume Hierarchies", HPG 2009) over items
+    /// [0, n), with room for `budget` more references after them; `bounds`
+    /// are the items' (side_bounds). A node whose best object split leaves
+    /// two children that overlap by more than spatial_overlap of the root's
+    /// area also bins its references between planes that may cut them
+    /// (find_spatial_split); if that costs less by the SAH, a reference that
+    /// straddles the plane goes to both children, each with the box of its
+    /// part (cut_references). The pieces are references to the same
+    /// primitive, so a ray gets the same hit whichever it meets. A node where
+    /// the overlap is small, or whose subtree is small, is handed to build().
+    binary_child build_spatial(std::size_t n, real root_area, std::size_t budget, const side_bounds& bounds)
     {
-        return spatial_node(items_.data(), n, nullptr, 0, root_area, budget, &bounds);
+        return spatial_node(0, n, budget, 0, root_area, bounds);
     }
 
     /// Builds the subtree of items [begin, end) inside `box`; returns it as a
@@ -146,30 +140,27 @@ public:
     }
 
 private:
-    /// build_spatial over refs[0, n), which `owned` holds (nullptr: the root's, in items_).
-    binary_child spatial_node(const build_item* refs, std::size_t n, build_item_array* owned, int depth, real root_area,
-                              std::size_t& budget, const side_bounds* known_bounds)
+    /// build_spatial over items [begin, end), with room for `budget` more
+    /// references at [end, end + budget); `bounds` are the items'.
+    binary_child spatial_node(std::size_t begin, std::size_t end, std::size_t budget, int depth, real root_area,
+                              const side_bounds& bounds)
     {
-        const side_bounds bounds = known_bounds != nullptr ? *known_bounds : bounds_of(refs, n);
+        build_item* const refs = items_.data() + begin;
+        const std::size_t n = end - begin;
         const aabb& box = bounds.box;
-        const aabb& centroids = bounds.centroids;
         const auto hand_over = [&](const split* known = nullptr) {
-            if (owned == nullptr) // the whole tree without a cut (a fine mesh): in place
-                return build(0, n, box, depth, known, &centroids);
-            const std::size_t begin = items_.claim_copy(refs, n);
-            build_item_array().swap(*owned);
-            return build(begin, begin + n, box, depth, known, &centroids);
+            return build(begin, end, box, depth, known, &bounds.centroids);
         };
         if (n <= options_.max_leaf_size || depth + 1 >= options_.max_depth || budget == 0)
             return hand_over();
         // Cuts across the longest axis only (all three: 3x the cost, slower trees; docs/performance.md exp. 6).
-        // No reference wider than a slice there (a fine mesh, the lower tree): build() works in place.
+        // No reference wider than a slice there (a fine mesh, the lower tree): build() as it is.
         const vec3 e = box.extent();
         const int axis = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
         if (!(bounds.widest[axis] > e[axis] / real(slice_count_)))
             return hand_over();
         const bool wide[3] = {axis == 0, axis == 1, axis == 2};
-        const split object = find_split(refs, n, centroids);
+        const split object = find_split(refs, n, bounds.centroids);
         if (object.axis < 0)
             return hand_over(&object);
         const aabb overlap{glm::max(object.left.lo, object.right.lo), glm::min(object.left.hi, object.right.hi)};
@@ -177,56 +168,46 @@ private:
             return hand_over(&object);
         const spatial_split cut = find_spatial_split(refs, n, box, wide);
 
-        sides parts;
+        // the pieces go after the node's references, in its room
+        std::size_t count = n, middle = 0;
+        side_bounds l, r;
         if (cut.axis >= 0 && cut.cost < object.cost && cut.extra <= budget) {
-            parts = to_sides(refs, n, [&](const build_item& r, sides& out) {
-                if (r.box.hi[cut.axis] <= cut.plane) {
-                    out.left.push_back(r);
-                } else if (r.box.lo[cut.axis] >= cut.plane) {
-                    out.right.push_back(r);
-                } else {
-                    const aabb below = clipped_box(prims_[r.index], cut.axis, cut.plane, true, r.box);
-                    const aabb above = clipped_box(prims_[r.index], cut.axis, cut.plane, false, r.box);
-                    if (below.empty()) {
-                        out.right.push_back(r);
-                    } else if (above.empty()) {
-                        out.left.push_back(r);
-                    } else {
-                        out.left.push_back(build_item{below, below.center(), r.index});
-                        out.right.push_back(build_item{above, above.center(), r.index});
-                    }
-                }
-            });
-            const std::size_t extra = parts.left.size() + parts.right.size() - n; // the budget bounds items_
-            if (parts.left.empty() || parts.right.empty() || extra > budget)
-                parts = sides();
-            else {
-                budget -= extra;
+            count += cut_references(refs, n, budget, cut.axis, cut.plane, prims_);
+            const auto below = [&](const build_item& item) { return item.box.hi[cut.axis] <= cut.plane; };
+            middle = partition_by<true>(refs, count, below, l, r);
+            if (middle > 0 && middle < count)
                 ++spatial_splits;
+        }
+        if (middle == 0 || middle == count) { // the object split, as build() makes it
+            l = r = side_bounds();
+            const auto left_of = [&](const build_item& item) { return object.left_of(item.centroid); };
+            middle = partition_by<true>(refs, count, left_of, l, r);
+            if (middle == 0 || middle == count) { // pieces of one primitive only (never seen)
+                middle = count / 2;
+                l = bounds_of(refs, middle);
+                r = bounds_of(refs + middle, count - middle);
             }
         }
-        if (parts.left.empty() && parts.right.empty()) // the object split, as build() makes it
-            parts = to_sides(refs, n, [&](const build_item& r, sides& out) {
-                if (object.left_of(r.centroid))
-                    out.left.push_back(r);
-                else
-                    out.right.push_back(r);
-            });
-        if (owned != nullptr)
-            build_item_array().swap(*owned);
-        else
-            items_.release_all(); // the root's items are on its sides now
-        build_item_array left = std::move(parts.left), right = std::move(parts.right);
+        pieces += count - n;
+        budget -= count - n;
 
-        // the budget left is shared by the children in proportion to their
-        // references, so the tree does not depend on which is built first
-        std::size_t right_budget =
-            std::size_t(double(budget) * double(right.size()) / double(left.size() + right.size()));
-        std::size_t left_budget = budget - right_budget;
-        budget = 0;
+        // The room left is shared by the children in proportion to their
+        // references (so the tree does not depend on which is built first),
+        // the left child's between the two ranges: the right range moves up.
+        const std::size_t right_count = count - middle;
+        const std::size_t right_budget = std::size_t(double(budget) * double(right_count) / double(count));
+        const std::size_t left_budget = budget - right_budget;
+        const std::size_t right_begin = begin + middle + left_budget;
+        if (left_budget > 0) { // the first left_budget of the right range go to its end, or all of it moves
+            const std::size_t moved = std::min(left_budget, right_count);
+            std::uninitialized_copy(refs + middle, refs + middle + moved, refs + count + left_budget - moved);
+        }
         return inner_node(
-            box, half_area(box), n, [&] { return build_spatial(std::move(left), depth + 1, root_area, left_budget); },
-            [&](binary_builder& b) { return b.build_spatial(std::move(right), depth + 1, root_area, right_budget); });
+            box, half_area(box), count,
+            [&] { return spatial_node(begin, begin + middle, left_budget, depth + 1, root_area, l); },
+            [&](binary_builder& b) {
+                return b.spatial_node(right_begin, right_begin + right_count, right_budget, depth + 1, root_area, r);
+            });
     }
 
     /// A new node's index, in this builder's run of the store, and `at` the node.
@@ -279,6 +260,7 @@ private:
         node_count += right_builder.node_count;
         sah_cost += right_builder.sah_cost;
         spatial_splits += right_builder.spatial_splits;
+        pieces += right_builder.pieces;
     }
 
     /// From this many primitives a node bins its two halves on two threads.
@@ -325,36 +307,6 @@ private:
             bins.add(refs, n, prims_);
         }
         return bins.best(n, options_.primitives_per_test);
-    }
-
-    /// A node's references sent to its two children (build_spatial).
-    struct sides {
-        build_item_array left, right;
-    };
-
-    /// to(r, sides) for every reference, in order; from
-    /// parallel_binning_threshold references on, the two halves on two
-    /// threads, joined in order: the same sides as one thread makes.
-    template <class To>
-    sides to_sides(const build_item* refs, std::size_t n, const To& to)
-    {
-        const auto run = [&](std::size_t begin, std::size_t end, sides& out) {
-            out.left.reserve(end - begin);
-            out.right.reserve(end - begin);
-            for (std::size_t i = begin; i < end; ++i)
-                to(refs[i], out);
-        };
-        sides first;
-        if (!in_halves(n)) {
-            run(0, n, first);
-            return first;
-        }
-        sides second;
-        auto second_half = [&] { run(n / 2, n, second); };
-        tasks_->fork(second_half, [&] { run(0, n / 2, first); });
-        first.left.insert(first.left.end(), second.left.begin(), second.left.end());
-        first.right.insert(first.right.end(), second.right.begin(), second.right.end());
-        return first;
     }
 
     binary_child leaf(std::size_t begin, std::size_t n, const aabb& box, real area)

@@ -11,27 +11,24 @@
 //    The store is segments of doubling size, segment s holding 2^s runs: it
 //    grows without a bound known in advance, nothing written moves, and an
 //    index finds its segment with one bit scan.
-//  - item_pool: one array of a capacity known in advance (the primitives and
-//    the spatial splits' budget); a node handed to build() claims a range of
-//    it for its references, which build() then sorts in place.
-// Where a node or a range lies depends on which thread claimed it first; the
-// wide collapse follows the tree from its root and the leaf blocks follow the
+//  - item_pool: one array of a capacity known in advance, the primitives
+//    and the spatial splits' budget, uninitialised: the primitives' items
+//    are written to [0, n), and a node with spatial splits works in a range
+//    with room for its budget after it (binary_builder::spatial_node).
+// Where a node lies depends on which thread took its run first; the wide
+// collapse follows the tree from its root and the leaf blocks follow the
 // leaves, so the tree and the blocks do not.
 //
 //     rt::detail::binary_node_store nodes;
 //     const std::uint32_t first = nodes.take_run(); // on any thread: `run` indices of its own
 //     ::new (&nodes[first]) rt::detail::binary_node; // its storage is not initialised
-//     rt::detail::item_pool items(capacity);
-//     const std::size_t begin = items.claim(n);      // items.data()[begin, begin + n) are this thread's
+//     rt::detail::item_pool items(capacity);         // items.data()[0, capacity), not initialised
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <mutex>
-#include <string>
 
 #include "../error.hpp"
 #include "build_options.hpp"
@@ -105,8 +102,8 @@ private:
     std::uint32_t runs_ = 0;
 };
 
-/// The references of one build (see the top of this file). Their storage is
-/// not initialised: a range holds build_items once claimed and copied to.
+/// The references of one build (see the top of this file): storage for
+/// `capacity` build_items, not initialised (a range holds items once written).
 class item_pool {
 public:
     explicit item_pool(std::size_t capacity)
@@ -119,31 +116,12 @@ public:
 
     build_item* data() { return data_; }
     const build_item* data() const { return data_; }
-    /// The first of n consecutive items that no other claim gets (any thread).
-    std::size_t claim(std::size_t n)
-    {
-        const std::size_t first = used_.fetch_add(n);
-        if (first + n > capacity_) // the budget of spatial splits bounds the references: never
-            throw error("expected at most " + std::to_string(capacity_) + " references in a BVH build, found more");
-        return first;
-    }
-    /// n items from `from` copied to a range of their own; returns its first.
-    std::size_t claim_copy(const build_item* from, std::size_t n)
-    {
-        const std::size_t first = claim(n);
-        std::uninitialized_copy(from, from + n, data_ + first);
-        return first;
-    }
-    /// The items claimed so far (after the build: its references).
-    std::size_t used() const { return used_.load(); }
-    /// Forgets every claim (the root's items, once copied to its sides).
-    void release_all() { used_.store(0); }
+    std::size_t capacity() const { return capacity_; }
 
 private:
     static large_array_allocator<build_item> allocator() { return {}; }
     build_item* data_;
     std::size_t capacity_;
-    std::atomic<std::size_t> used_{0};
 };
 
 } // namespace detail

@@ -92,9 +92,9 @@ public:
         // fraction held in [0, 4], a NaN taken as 0
         const real asked = used.spatial_budget;
         const real fraction = asked > real(4) ? real(4) : asked > 0 ? asked : real(0);
-        std::size_t budget = std::size_t(double(fraction) * double(count));
+        const std::size_t budget = std::size_t(double(fraction) * double(count));
         detail::item_pool items(count + budget);
-        detail::build_item* const first = items.data() + items.claim(count);
+        detail::build_item* const first = items.data();
         detail::side_bounds all; // the items' box, centroids and widest extents, for build_spatial
         std::mutex all_mutex;    // and has_spheres_
         detail::fill_in_parallel(count, threads, [&](std::size_t begin, std::size_t end) {
@@ -118,11 +118,11 @@ public:
         detail::binary_child root;
         tasks.run(threads, [&] {
             if (budget > 0)
-                root = builder.build_spatial_root(count, detail::half_area(scene_box), budget, all);
+                root = builder.build_spatial(count, detail::half_area(scene_box), budget, all);
             else
                 root = builder.build(0, count, scene_box, 0);
         });
-        stats_.references = items.used();
+        stats_.references = count + builder.pieces;
         stats_.spatial_splits = builder.spatial_splits;
         const real root_area = detail::half_area(scene_box);
         stats_.sah_cost = root_area > 0 ? builder.sah_cost / double(root_area) : 0;

@@ -346,21 +346,22 @@ inline side_bounds bounds_of(const build_item* items, std::size_t n)
     return out;
 }
 
-/// Moves the items that s.left_of sends left before the others and returns
-/// how many went left; `left` and `right` receive each side's bounds, found
-/// in the same pass (the children's boxes are their items', whatever the bins
-/// said, and their centroid boxes need no pass of their own).
-inline std::size_t partition_items(build_item* items, std::size_t n, const split& s, side_bounds& left,
-                                   side_bounds& right)
+/// Moves the items that is_left(item) sends left before the others and
+/// returns how many went left; `left` and `right` receive each side's bounds,
+/// found in the same pass (the children's boxes are their items', whatever the
+/// bins said, and their centroid boxes need no pass of their own); their
+/// widest extents only `with_widest`.
+template <bool with_widest, class IsLeft>
+std::size_t partition_by(build_item* items, std::size_t n, const IsLeft& is_left, side_bounds& left,
+                         side_bounds& right)
 {
-    side_gatherer<false> on[2]; // [0] left, [1] right
-    const auto take = [&](const build_item& item, int side) { on[side].take(item); };
+    side_gatherer<with_widest> on[2]; // [0] left, [1] right
     std::size_t i = 0, j = n;
     for (;;) {
-        while (i < j && s.left_of(items[i].centroid))
-            take(items[i++], 0);
-        while (i < j && !s.left_of(items[j - 1].centroid))
-            take(items[--j], 1);
+        while (i < j && is_left(items[i]))
+            on[0].take(items[i++]);
+        while (i < j && !is_left(items[j - 1]))
+            on[1].take(items[--j]);
         if (i == j)
             break;
         std::swap(items[i], items[j - 1]); // then both loops take them
@@ -368,6 +369,14 @@ inline std::size_t partition_items(build_item* items, std::size_t n, const split
     on[0].finish(left);
     on[1].finish(right);
     return i;
+}
+
+/// partition_by the side of the split s.
+inline std::size_t partition_items(build_item* items, std::size_t n, const split& s, side_bounds& left,
+                                   side_bounds& right)
+{
+    return partition_by<false>(items, n, [&](const build_item& item) { return s.left_of(item.centroid); }, left,
+                               right);
 }
 
 } // namespace detail

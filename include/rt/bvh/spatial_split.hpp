@@ -8,8 +8,7 @@
 // (clipped_box, rounded outwards so it never cuts the triangle), on its side.
 // A piece is the same triangle, so a ray gets the same hit through either.
 // binary_builder::build_spatial decides where to try it and whether the SAH
-// says it pays: on Sponza and Sibenik, never on meshes of small triangles
-// (docs/performance.md, experiment 6).
+// says it pays (docs/performance.md, experiment 6).
 #pragma once
 
 #include <algorithm>
@@ -17,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -94,6 +94,36 @@ struct spatial_split {
     std::size_t extra = 0;  ///< references that would go to both sides
 };
 
+/// Cuts the references of items[0, n) that straddle the plane x[axis] =
+/// plane into their pieces (clipped_box), in place: the piece below replaces
+/// the reference, the piece above goes to items[n], items[n + 1], ... (at most
+/// `room`; returns how many), as Embree's builder does in its "extended
+/// ranges" (kernels/builders/heuristic_spatial_array.h). A reference with
+/// an empty part takes the box of the other. Afterwards a reference lies
+/// below the plane (box.hi[axis] <= plane) or reaches above it (one past the
+/// room stays whole).
+inline std::size_t cut_references(build_item* items, std::size_t n, std::size_t room, int axis, real plane,
+                                  const packed_primitive* prims)
+{
+    std::size_t added = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        build_item& r = items[i];
+        if (!(r.box.lo[axis] < plane && plane < r.box.hi[axis]))
+            continue;
+        const aabb below = clipped_box(prims[r.index], axis, plane, true, r.box);
+        const aabb above = clipped_box(prims[r.index], axis, plane, false, r.box);
+        if (below.empty()) {
+            r = build_item{above, above.center(), r.index};
+        } else if (above.empty()) {
+            r = build_item{below, below.center(), r.index};
+        } else if (added < room) {
+            ::new (static_cast<void*>(items + n + added++)) build_item{above, above.center(), r.index};
+            r = build_item{below, below.center(), r.index};
+        }
+    }
+    return added;
+}
+
 /// The bins of the spatial split search of one node: `count` equal slices of
 /// the node's box on each axis, with each reference's parts binned where
 /// they lie ("chopped binning", Stich et al. sec. 4): a reference spanning
@@ -107,10 +137,8 @@ struct spatial_split {
 /// them at the top of the tree.
 class spatial_bins {
 public:
-    /// Bins of `count` slices per axis, for any number of searches (reset()):
-    /// a builder keeps its own, so a search allocates nothing (a small node's
-    /// search was mostly its nine allocations: the Cornell box's build spent
-    /// half its time in five searches of 12 to 36 references).
+    /// Bins of `count` slices per axis for any number of searches (reset()),
+    /// so that a search allocates nothing (docs/performance.md, exp. 6).
     explicit spatial_bins(std::size_t count)
         : count_(count), slice_(3 * count), enter_(3 * count), leave_(3 * count), planes_(3 * (count + 1)),
           right_box_(count), right_count_(count)
