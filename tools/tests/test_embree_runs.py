@@ -21,7 +21,8 @@ RAYS = ("mesh,triangles,set,rays,threads,rt_seconds,embree_seconds,rt_mrays_per_
         "ratio_rt_over_embree,rt_hits,embree_hits,hit_mismatch,depth_mismatch\n")
 BUILD = ("mesh,triangles,dropped_degenerate,rt_build_seconds_1_thread,rt_build_seconds_all_threads,"
          "embree_build_seconds_1_thread,embree_build_seconds_all_threads,ratio_rt_over_embree_1_thread,"
-         "rt_speedup_all_threads,rt_build_seconds_1_thread_without_spatial_splits\n")
+         "rt_speedup_all_threads,rt_build_seconds_1_thread_without_spatial_splits,"
+         "embree_build_seconds_1_thread_high_quality\n")
 
 
 def write_run(folder: Path, ratio: float, two_thread_rate: float, sets=embree_runs.SETS):
@@ -32,7 +33,7 @@ def write_run(folder: Path, ratio: float, two_thread_rate: float, sets=embree_ru
         lines.append(f"cube.obj,12,{s},100,2,1,1,{two_thread_rate},8.0,0.5,1,1,0,0\n")
     (folder / "embree_rays.csv").write_text("".join(lines))
     (folder / "embree_build.csv").write_text("# machine: a test machine\n" + BUILD +
-                                             "cube.obj,12,0,0.02,0.0125,0.01,0.005,2.0,1.6,0.011\n")
+                                             "cube.obj,12,0,0.02,0.0125,0.01,0.005,2.0,1.6,0.011,0.08\n")
 
 
 class Tables(unittest.TestCase):
@@ -49,9 +50,10 @@ class Tables(unittest.TestCase):
         self.assertIn("Machine: a test machine.", text)
         self.assertIn("| cube | 0.50 (0.25) | 0.50 (0.25) |", text)  # rt/Embree, one thread
         self.assertIn("| cube | 1.90x (2.00x) |", text)                # rt's rays/s on two threads / one
-        # builds: 0.02 s against Embree's 0.01 s; 0.011 s without spatial splits; 0.02 / 0.0125
+        # builds: 0.02 s against Embree's 0.01 s; 0.011 s without spatial splits; 0.02 / 0.0125;
+        # Embree's high-quality build 0.08 s, a quarter of rt's time
         self.assertIn("| cube | 0.020 (0.020) | 0.013 (0.013) | 0.011 (0.011) | 0.010 (0.010) | "
-                      "**2.00** (2.00) | 1.10 (1.10) | 1.60x (1.60x) |", text)
+                      "**2.00** (2.00) | 1.10 (1.10) | 1.60x (1.60x) | 0.080 (0.080) | 0.25 (0.25) |", text)
 
     def test_the_marked_block_is_replaced_and_the_rest_kept(self):
         doc = self.tmp / "doc.md"
@@ -77,6 +79,17 @@ class Tables(unittest.TestCase):
         with self.assertRaises(SystemExit) as caught:
             embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(self.tmp / "short"))
         self.assertIn("cube incoherent", str(caught.exception))
+
+    def test_a_run_from_before_the_high_quality_column_is_refused_by_name(self):
+        old = self.tmp / "old"
+        write_run(old, 0.5, 3.8)
+        build = old / "embree_build.csv"
+        lines = build.read_text().splitlines()
+        build.write_text("\n".join([lines[0], lines[1].rsplit(",", 1)[0], lines[2].rsplit(",", 1)[0]]) + "\n")
+        with self.assertRaises(SystemExit) as caught:
+            embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(old))
+        self.assertIn("expected embree_build.csv to hold Embree's high-quality build time, found none for cube",
+                      str(caught.exception))
 
 
 if __name__ == "__main__":
