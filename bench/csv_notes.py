@@ -1,7 +1,10 @@
 """csv_notes.py - reads the benchmarks' CSV files: '# key: value' note lines, then a
-header and rows (bench/plot.py and bench/embree_runs.py; standard library only)."""
+header and rows; and writes tables made from them into a document, between two
+marker lines (bench/plot.py, bench/embree_runs.py, bench/frame_runs.py; standard
+library only)."""
 
 import csv
+import os
 
 
 def read(path):
@@ -15,3 +18,17 @@ def read(path):
             else:
                 lines.append(line)
     return notes, list(csv.DictReader(lines))
+
+
+def write_block(doc_path, begin, end, text):
+    """Replaces what lies between the lines `begin` and `end` of doc_path by text,
+    atomically (a temporary file, then a rename); refuses a document without them."""
+    with open(doc_path, encoding="utf-8") as f:
+        doc = f.read()
+    if doc.count(begin) != 1 or doc.count(end) != 1 or doc.index(begin) > doc.index(end):
+        raise SystemExit(f"{doc_path}: expected one '{begin}' line and, after it, one '{end}' line; "
+                         f"add them around the tables to replace")
+    start, stop = doc.index(begin) + len(begin), doc.index(end)
+    with open(doc_path + ".tmp", "w", encoding="utf-8") as f:
+        f.write(doc[:start] + "\n" + text + doc[stop:])
+    os.replace(doc_path + ".tmp", doc_path)

@@ -18,7 +18,7 @@ import argparse
 import os
 import sys
 
-from csv_notes import read  # beside this file
+from csv_notes import read, write_block  # beside this file
 
 BEGIN, END = "<!-- embree-runs:begin -->", "<!-- embree-runs:end -->"
 SETS = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
@@ -99,16 +99,7 @@ def main(argv=None):
     if not args.doc:
         sys.stdout.write(text)
         return 0
-    with open(args.doc, encoding="utf-8") as f:
-        doc = f.read()
-    if doc.count(BEGIN) != 1 or doc.count(END) != 1 or doc.index(BEGIN) > doc.index(END):
-        raise SystemExit(f"{args.doc}: expected one '{BEGIN}' line and, after it, one '{END}' line; "
-                         f"add them around the tables to replace")
-    start, end = doc.index(BEGIN) + len(BEGIN), doc.index(END)
-    new = doc[:start] + "\n" + text + doc[end:]
-    with open(args.doc + ".tmp", "w", encoding="utf-8") as f:
-        f.write(new)
-    os.replace(args.doc + ".tmp", args.doc)
+    write_block(args.doc, BEGIN, END, text)
     print("embree_runs.py: wrote the tables of", args.first, "and", args.second, "into", args.doc)
     return 0
 

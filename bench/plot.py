@@ -268,10 +268,14 @@ def plot_embree(data, charts):
     sets = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
     colours = {"outside": "tab:blue", "centre": "tab:orange", "shadow": "tab:gray", "shadow-surface": "tab:olive",
                "incoherent": "tab:red"}
-    builds = {}
+    builds, against_high = {}, {}
     build_path = os.path.join(data, "embree_build.csv")
     if os.path.exists(build_path):
-        builds = {r["mesh"]: num(r["ratio_rt_over_embree_1_thread"]) for r in read(build_path)[1]}
+        for r in read(build_path)[1]:
+            builds[r["mesh"]] = num(r["ratio_rt_over_embree_1_thread"])
+            if r.get("embree_build_seconds_1_thread_high_quality"):  # runs from session 20 on
+                against_high[r["mesh"]] = (num(r["rt_build_seconds_1_thread"]) /
+                                           num(r["embree_build_seconds_1_thread_high_quality"]))
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), gridspec_kw={"width_ratios": [3, 1]})
     width = 0.8 / len(sets)
     for k, s in enumerate(sets):
@@ -289,7 +293,13 @@ def plot_embree(data, charts):
     axes[0].legend(fontsize=7)
     axes[0].grid(True, axis="y", alpha=0.3)
     if builds:
-        axes[1].bar(range(len(meshes)), [builds.get(m, math.nan) for m in meshes], color="tab:purple")
+        shift = 0.2 if against_high else 0.0
+        axes[1].bar([i - shift for i in range(len(meshes))], [builds.get(m, math.nan) for m in meshes],
+                    0.4 if against_high else 0.8, color="tab:purple", label="Embree's default (no spatial splits)")
+        if against_high:
+            axes[1].bar([i + shift for i in range(len(meshes))], [against_high.get(m, math.nan) for m in meshes],
+                        0.4, color="tab:pink", label="Embree high quality (spatial splits)")
+            axes[1].legend(fontsize=6)
         axes[1].axhline(1, color="k", ls="--", lw=1)
         axes[1].annotate("target 1", (len(meshes) - 1.2, 1.05), fontsize=7)
         axes[1].set_xticks(range(len(meshes)))

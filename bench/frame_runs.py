@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""frame_runs.py - the whole-frame table of docs/performance.md (section 7), from two
+runs of bench_frame, so that it is never typed by hand.
+
+    build/bench/bench_frame --shared ../shared --out /tmp/frame1
+    build/bench/bench_frame --shared ../shared --out /tmp/frame2
+    python3 bench/frame_runs.py /tmp/frame1 /tmp/frame2 --doc docs/performance.md
+
+Each run folder holds frame.csv. The table (seconds a frame on one thread and on
+all, the speed-up, the rays by kind, the rays per second and the build) is written
+between the lines <!-- frame-runs:begin --> and <!-- frame-runs:end --> of the
+document (atomically), each timing of the first run followed by the second's in
+brackets. Without --doc it is printed. Python 3 standard library only.
+"""
+
+import argparse
+import os
+import sys
+
+from csv_notes import read, write_block  # beside this file
+
+BEGIN, END = "<!-- frame-runs:begin -->", "<!-- frame-runs:end -->"
+
+
+def load(folder):
+    """One run: its notes and its rows by (scene, threads)."""
+    notes, rows = read(os.path.join(folder, "frame.csv"))
+    name = lambda s: s.rsplit(".", 1)[0]
+    return notes, {(name(r["scene"]), int(r["threads"])): r for r in rows}
+
+
+def table(first, second):
+    notes, rows1 = first
+    _, rows2 = second
+    scenes = list(dict.fromkeys(scene for scene, _ in rows1))
+    most = max(threads for _, threads in rows1)
+    missing = [f"{s} ({t} thread{'s' if t > 1 else ''})" for s in scenes for t in sorted({1, most})
+               if (s, t) not in rows1 or (s, t) not in rows2]
+    if most < 2:
+        missing.append("every scene (2 threads or more)")
+    if missing:
+        raise SystemExit("frame_runs.py: expected both runs to hold every scene on one thread and on "
+                         f"{most}, found none for " + ", ".join(missing[:5]) +
+                         "; rerun bench_frame in full on a machine of two threads or more")
+    both = lambda f: "%s (%s)" % (f(rows1), f(rows2))
+    out = [f"Machine: {notes.get('machine', 'not recorded')}.",
+           f"Render: {notes.get('render', 'not recorded')}.", "",
+           f"| scene | 1 thread (s) | {most} threads (s) | speed-up | camera rays | shadow rays "
+           "| reflection rays | Mrays/s, 1 thread | BVH build (s) |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for s in scenes:
+        one, all_ = (s, 1), (s, most)
+        cells = [both(lambda r: "%.3f" % float(r[one]["seconds"])),
+                 both(lambda r: "%.3f" % float(r[all_]["seconds"])),
+                 both(lambda r: "%.2fx" % (float(r[one]["seconds"]) / float(r[all_]["seconds"]))),
+                 rows1[one]["camera_rays"], rows1[one]["shadow_rays"], rows1[one]["reflection_rays"],
+                 both(lambda r: "%.1f" % float(r[one]["mrays_per_s"])),
+                 both(lambda r: "%.3f" % float(r[one]["build_seconds"]))]
+        label = "%s (%sx%s)" % (s, rows1[one]["width"], rows1[one]["height"])
+        out.append("| %s | %s |" % (label, " | ".join(cells)))
+    return "\n".join(out) + "\n"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("first", help="the first run's --out folder")
+    parser.add_argument("second", help="the second run's --out folder")
+    parser.add_argument("--doc", help="the document whose marked block to replace")
+    args = parser.parse_args(argv)
+    text = table(load(args.first), load(args.second))
+    if not args.doc:
+        sys.stdout.write(text)
+        return 0
+    write_block(args.doc, BEGIN, END, text)
+    print("frame_runs.py: wrote the table of", args.first, "and", args.second, "into", args.doc)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
