@@ -411,6 +411,69 @@ TEST_CASE("the spatial search's slices hold the part of a triangle in them, and 
     CHECK(wrong == 0);
 }
 
+TEST_CASE("cutting references at a plane: each piece on its side, the pieces within the room, the rest whole")
+{
+    // 200 random triangles and a plane through their middle; cut with room
+    // for all the pieces, for 10 and for none. Afterwards every reference is
+    // below the plane (box.hi <= plane) or reaches above it; a cut one has a
+    // piece on each side whose boxes hold the triangle's corners on that side;
+    // one past the room keeps its whole box; and no room is overrun.
+    std::mt19937 random(41);
+    std::uniform_real_distribution<double> coordinate(-100, 100);
+    std::vector<rt::packed_primitive> prims;
+    for (int k = 0; k < 200; ++k) {
+        vec3 c[3];
+        for (vec3& v : c)
+            v = vec3{real(coordinate(random)), real(coordinate(random)), real(coordinate(random))};
+        prims.push_back(rt::pack_triangle(c[0], c[1], c[2], std::uint32_t(k)));
+    }
+    const int axis = 1;
+    const real plane = real(3.5);
+    std::size_t straddling = 0;
+    for (const rt::packed_primitive& p : prims) {
+        const rt::aabb b = rt::packed_bounds(p);
+        straddling += b.lo[axis] < plane && plane < b.hi[axis] ? 1 : 0;
+    }
+    REQUIRE(straddling > 50);
+    for (const std::size_t room : {std::size_t(1000), std::size_t(10), std::size_t(0)}) {
+        CAPTURE(room);
+        std::vector<rt::detail::build_item> items(prims.size() + room);
+        for (std::size_t i = 0; i < prims.size(); ++i) {
+            const rt::aabb b = rt::packed_bounds(prims[i]);
+            items[i] = rt::detail::build_item{b, b.center(), std::uint32_t(i)};
+        }
+        const std::size_t added = rt::detail::cut_references(items.data(), prims.size(), room, axis, plane, prims.data());
+        INFO("expected a piece for each triangle across the plane, as the room allows; found " << added);
+        CHECK(added == std::min(room, straddling));
+        std::size_t whole = 0, wrong = 0;
+        std::vector<int> below(prims.size(), 0), above(prims.size(), 0);
+        for (std::size_t i = 0; i < prims.size() + added; ++i) {
+            const rt::detail::build_item& r = items[i];
+            const rt::aabb full = rt::packed_bounds(prims[r.index]);
+            const bool is_below = r.box.hi[axis] <= plane;
+            (is_below ? below : above)[r.index] += 1;
+            if (!is_below && r.box.lo[axis] < plane)
+                whole += r.box.lo == full.lo && r.box.hi == full.hi ? 1 : 1000; // only a whole one may cross
+            for (int c = 0; c < 3; ++c) { // the corners on the piece's side lie in its box
+                const real* v = prims[r.index].v + 3 * c;
+                if (is_below ? v[axis] > plane : v[axis] < plane)
+                    continue;
+                for (int k = 0; k < 3; ++k)
+                    wrong += v[k] < r.box.lo[k] || v[k] > r.box.hi[k] ? 1 : 0;
+            }
+        }
+        INFO("expected the references past the room to keep their whole box and cross the plane, found " << whole);
+        CHECK(whole == straddling - added);
+        INFO("expected every corner on a piece's side inside the piece's box, found " << wrong << " outside");
+        CHECK(wrong == 0);
+        std::size_t both = 0;
+        for (std::size_t i = 0; i < prims.size(); ++i)
+            both += below[i] == 1 && above[i] == 1 ? 1 : 0;
+        INFO("expected each cut triangle on both sides once, found " << both << " for " << added << " pieces");
+        CHECK(both == added);
+    }
+}
+
 TEST_CASE("a spatial budget out of range is held in [0, 4] times the primitives: no overflow, no allocation beyond it")
 {
     rt::mesh m = icosphere(2, vec3(0), 1);
