@@ -180,6 +180,12 @@ TEST_CASE("the BVH is the same whatever the number of threads that build it")
         CHECK((a.stats().spatial_splits > 0) == spatial);
         CHECK(same_tree(a, rt::accelerator(s, rt::accelerator_kind::bvh, two)));
         CHECK(same_tree(a, rt::accelerator(s, rt::accelerator_kind::bvh, four)));
+        // a request far beyond the machine: at most four threads a core are
+        // started (a million were tried to be started before), the same tree
+        rt::bvh_options many = four;
+        many.threads = 1000000;
+        INFO("expected a build asked for a million threads to use a few and make the one-thread tree");
+        CHECK(same_tree(a, rt::accelerator(s, rt::accelerator_kind::bvh, many)));
     }
     // 70,000 triangles: the top node is binned on two threads (each half into
     // bins of its own, merged) and the subtrees fork wherever a thread is idle.

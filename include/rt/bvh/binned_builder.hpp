@@ -58,8 +58,14 @@ public:
     /// Below this many primitives a subtree is not worth a thread.
     static constexpr std::size_t parallel_threshold = 4096;
 
-    /// The threads a build over n primitives uses: one for a tree too small to fork.
-    static int threads_for(std::size_t n, int asked) { return n < parallel_threshold ? 1 : thread_count(asked); }
+    /// The threads a build over n primitives uses: one for a tree too small to
+    /// fork, else thread_count(asked), at most four a hardware thread (more
+    /// would only take turns on the same cores, and a request of a million
+    /// would try to start a million).
+    static int threads_for(std::size_t n, int asked)
+    {
+        return n < parallel_threshold ? 1 : std::min(thread_count(asked), 4 * thread_count(0));
+    }
 
     std::size_t node_count = 0; ///< the nodes this builder and the builders it joined made
     double sah_cost = 0; ///< the sum of C A over the subtree, before dividing by the root's area

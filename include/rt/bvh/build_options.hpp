@@ -27,7 +27,7 @@ struct bvh_options {
     real intersection_cost = 1;       ///< C_isect: one leaf test of up to primitives_per_test primitives
     std::size_t primitives_per_test = 4; ///< the SAH counts a leaf's primitives in blocks of this many
     int max_depth = 60;               ///< a node this deep in the binary tree becomes a leaf
-    int threads = 0;                  ///< threads for the build; 0: one per core (the tree is the same)
+    int threads = 0;                  ///< threads for the build; 0: one per core, at most 4 per core (the tree is the same)
     /// Spatial splits (see binary_builder::build_spatial): at most this many
     /// extra references, as a fraction of the primitives (taken in [0, 4]:
     /// the build reserves room for them); 0 turns them off.
