@@ -3,8 +3,10 @@ header and rows; and writes tables made from them into a document, between two
 marker lines (bench/plot.py, bench/embree_runs.py, bench/frame_runs.py; standard
 library only)."""
 
+import argparse
 import csv
 import os
+import sys
 
 
 def read(path):
@@ -32,3 +34,21 @@ def write_block(doc_path, begin, end, text):
     with open(doc_path + ".tmp", "w", encoding="utf-8") as f:
         f.write(doc[:start] + "\n" + text + doc[stop:])
     os.replace(doc_path + ".tmp", doc_path)
+
+
+def two_runs_main(argv, description, make_text, begin, end, wrote):
+    """The command line of embree_runs.py and frame_runs.py: two run folders, and
+    --doc, the document whose block between `begin` and `end` receives
+    make_text(first, second) (printed without it); `wrote` starts the message."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("first", help="the first run's --out folder")
+    parser.add_argument("second", help="the second run's --out folder")
+    parser.add_argument("--doc", help="the document whose marked block to replace")
+    args = parser.parse_args(argv)
+    text = make_text(args.first, args.second)
+    if not args.doc:
+        sys.stdout.write(text)
+        return 0
+    write_block(args.doc, begin, end, text)
+    print(wrote, args.first, "and", args.second, "into", args.doc)
+    return 0

@@ -14,11 +14,10 @@ first run followed by the second's in brackets. Without --doc they are printed.
 Python 3 standard library only.
 """
 
-import argparse
 import os
 import sys
 
-from csv_notes import read, write_block  # beside this file
+from csv_notes import read, two_runs_main  # beside this file
 
 BEGIN, END = "<!-- embree-runs:begin -->", "<!-- embree-runs:end -->"
 SETS = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
@@ -90,18 +89,8 @@ def tables(first, second):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("first", help="the first run's --out folder")
-    parser.add_argument("second", help="the second run's --out folder")
-    parser.add_argument("--doc", help="the document whose marked block to replace")
-    args = parser.parse_args(argv)
-    text = tables(load(args.first), load(args.second))
-    if not args.doc:
-        sys.stdout.write(text)
-        return 0
-    write_block(args.doc, BEGIN, END, text)
-    print("embree_runs.py: wrote the tables of", args.first, "and", args.second, "into", args.doc)
-    return 0
+    return two_runs_main(argv, __doc__.split("\n")[0], lambda first, second: tables(load(first), load(second)),
+                         BEGIN, END, "embree_runs.py: wrote the tables of")
 
 
 if __name__ == "__main__":

@@ -13,11 +13,10 @@ document (atomically), each timing of the first run followed by the second's in
 brackets. Without --doc it is printed. Python 3 standard library only.
 """
 
-import argparse
 import os
 import sys
 
-from csv_notes import read, write_block  # beside this file
+from csv_notes import read, two_runs_main  # beside this file
 
 BEGIN, END = "<!-- frame-runs:begin -->", "<!-- frame-runs:end -->"
 
@@ -62,18 +61,8 @@ def table(first, second):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("first", help="the first run's --out folder")
-    parser.add_argument("second", help="the second run's --out folder")
-    parser.add_argument("--doc", help="the document whose marked block to replace")
-    args = parser.parse_args(argv)
-    text = table(load(args.first), load(args.second))
-    if not args.doc:
-        sys.stdout.write(text)
-        return 0
-    write_block(args.doc, BEGIN, END, text)
-    print("frame_runs.py: wrote the table of", args.first, "and", args.second, "into", args.doc)
-    return 0
+    return two_runs_main(argv, __doc__.split("\n")[0], lambda first, second: table(load(first), load(second)),
+                         BEGIN, END, "frame_runs.py: wrote the table of")
 
 
 if __name__ == "__main__":

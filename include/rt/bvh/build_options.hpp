@@ -13,7 +13,6 @@
 #include "../aabb.hpp"
 #include "../config.hpp"
 #include "../vec.hpp"
-#include "parallel_fill.hpp"
 
 namespace rt {
 
@@ -105,10 +104,6 @@ struct binary_child {
 struct binary_node {
     binary_child side[2];
 };
-
-/// The build's references (parallel_fill.hpp): from 8 MB, pages of their own
-/// (huge pages where the kernel offers them), not memory glibc may keep.
-using build_item_array = large_array<build_item>;
 
 } // namespace detail
 

@@ -116,7 +116,6 @@ public:
 
     build_item* data() { return data_; }
     const build_item* data() const { return data_; }
-    std::size_t capacity() const { return capacity_; }
 
 private:
     static large_array_allocator<build_item> allocator() { return {}; }

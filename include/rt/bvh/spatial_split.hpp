@@ -321,17 +321,17 @@ private:
                 from = pick(flat, zero, from);
                 to = pick(flat, pick(in_slab, one, _mm_set1_ps(-1)), to);
                 const __m128 valid = _mm_cmple_ps(from, to); // false for a NaN too
-                // the two ends of each edge's piece, an invalid lane as the empty box
-                const auto end_lo = [&](__m128 u, __m128 d) {
+                // the two ends of each edge's piece on one axis, low and high,
+                // an invalid lane as the empty box
+                const auto ends = [&](__m128 u, __m128 d, __m128& end_lo, __m128& end_hi) {
                     const __m128 p0 = _mm_add_ps(u, _mm_mul_ps(from, d)), p1 = _mm_add_ps(u, _mm_mul_ps(to, d));
-                    return pick(valid, _mm_min_ps(p0, p1), none_lo);
+                    end_lo = pick(valid, _mm_min_ps(p0, p1), none_lo);
+                    end_hi = pick(valid, _mm_max_ps(p0, p1), none_hi);
                 };
-                const auto end_hi = [&](__m128 u, __m128 d) {
-                    const __m128 p0 = _mm_add_ps(u, _mm_mul_ps(from, d)), p1 = _mm_add_ps(u, _mm_mul_ps(to, d));
-                    return pick(valid, _mm_max_ps(p0, p1), none_hi);
-                };
-                __m128 lx = end_lo(ux, dx), ly = end_lo(uy, dy), lz = end_lo(uz, dz), lw = none_lo;
-                __m128 hx = end_hi(ux, dx), hy = end_hi(uy, dy), hz = end_hi(uz, dz), hw = none_hi;
+                __m128 lx, ly, lz, lw = none_lo, hx, hy, hz, hw = none_hi;
+                ends(ux, dx, lx, hx);
+                ends(uy, dy, ly, hy);
+                ends(uz, dz, lz, hz);
                 _MM_TRANSPOSE4_PS(lx, ly, lz, lw); // lanes of x, y, z to registers of them
                 _MM_TRANSPOSE4_PS(hx, hy, hz, hw);
                 const __m128 lo = _mm_min_ps(_mm_min_ps(lx, ly), _mm_min_ps(lz, lw));
