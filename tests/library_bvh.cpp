@@ -659,6 +659,57 @@ TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last 
     CHECK(rec.primitive == 999);
 }
 
+TEST_CASE("a block's closest lane is the one replaces() keeps: the smallest t, at an equal t the largest id")
+{
+    // rt::detail::closest_lane picks one lane of a block's hits at once; it
+    // must be the lane a lane-by-lane search by rt::replaces() keeps, for
+    // every mask of hits, with ties at the smallest t, with lanes outside the
+    // mask holding smaller t (not hits, never chosen) and with t = infinity
+    std::mt19937 random(5);
+    const real ts[] = {real(0.5), real(2), real(2), real(7), rt::infinity};
+    std::uniform_int_distribution<int> pick_t(0, 4), pick_id(0, 6);
+    std::size_t cases = 0, ties = 0, wrong = 0;
+    for (int round = 0; round < 400; ++round)
+        for (int mask = 1; mask < 16; ++mask) {
+            rt::triangle_block b{};
+            rt::detail::block_hits hits{};
+            for (int lane = 0; lane < 4; ++lane) {
+                b.id[lane] = std::uint32_t(pick_id(random));
+                hits.t[lane] = ts[pick_t(random)];
+                if (!(mask & (1 << lane)) && round % 2 == 0)
+                    hits.t[lane] = real(-1); // below every hit: a lane outside the mask must not win
+            }
+            rt::primitive_hit best{};
+            bool found = false;
+            int expected = -1, at_best = 0;
+            for (int lane = 0; lane < 4; ++lane)
+                if ((mask & (1 << lane)) && (!found || rt::replaces(hits.t[lane], b.id[lane], best))) {
+                    best.t = hits.t[lane];
+                    best.id = b.id[lane];
+                    found = true;
+                    expected = lane;
+                }
+            for (int lane = 0; lane < 4; ++lane)
+                at_best += (mask & (1 << lane)) && hits.t[lane] == best.t ? 1 : 0;
+            ties += at_best > 1 ? 1 : 0;
+            const int got = rt::detail::closest_lane(mask, hits, b);
+            // lanes with the same t and id are the same hit: either is right
+            const bool same = got == expected ||
+                              ((mask & (1 << got)) && hits.t[got] == best.t && b.id[got] == best.id);
+            if (!same) {
+                ++wrong;
+                INFO("mask " << mask << ", t " << hits.t[0] << " " << hits.t[1] << " " << hits.t[2] << " "
+                             << hits.t[3] << ", ids " << b.id[0] << " " << b.id[1] << " " << b.id[2] << " " << b.id[3]);
+                CHECK_MESSAGE(same, "expected lane " << expected << " (the smallest t, then the largest id), found "
+                                                     << got);
+            }
+            ++cases;
+        }
+    MESSAGE(cases << " blocks, " << ties << " with a tie at the smallest t");
+    CHECK(ties > 1000);
+    CHECK(wrong == 0);
+}
+
 TEST_CASE("flat and BVH accelerators, scalar and SIMD traversal agree hit for hit on random scenes")
 {
     std::mt19937 random(2024);

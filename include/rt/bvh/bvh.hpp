@@ -268,12 +268,13 @@ private:
                                       : detail::intersect_block<!any_hit>(*block, lr, wr, tmin, closest_t, hits);
                     if (mask != 0 && any_hit)
                         return true;
-                    for (int lane = 0; mask != 0; ++lane, mask >>= 1) {
-                        if (!(mask & 1))
-                            continue;
-                        // best written field by field: a primitive_hit built
-                        // and copied whole was stored in parts and reloaded
-                        // at once, a store-forwarding stall
+                    if (mask != 0) {
+                        // the block's closest lane, then one decision against
+                        // the closest hit so far; best written field by
+                        // field: a primitive_hit built and copied whole was
+                        // stored in parts and reloaded at once, a
+                        // store-forwarding stall
+                        const int lane = detail::closest_lane(mask, hits, *block);
                         const std::uint32_t id = block->id[lane];
                         if (!found || replaces(hits.t[lane], id, best)) {
                             best.t = hits.t[lane];

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "../config.hpp"
 #include "../rounding.hpp"
@@ -93,6 +94,39 @@ inline int intersect_block_scalar(const triangle_block& b, const watertight_ray&
             hits.b2[lane] = lanes[lane].b2;
         }
     return mask;
+}
+
+/// The lane of `mask` (not 0) whose hit a closest-hit search keeps, by the
+/// rule of replaces() (packed.hpp): the smallest t, at an equal t the largest
+/// id. The smallest t is found in SIMD and the ids are read only on a tie, so
+/// a block costs one decision against the closest hit so far, not a branch
+/// per lane (on incoherent rays which lanes hit is a coin toss).
+inline int closest_lane(int mask, const block_hits& hits, const triangle_block& b)
+{
+    static constexpr signed char lowest[16] = {0, 0, 1, 0, 2, 0, 1, 0, 3, 0, 1, 0, 2, 0, 1, 0};
+#if RT_BVH_SSE
+    const __m128i bit = _mm_set_epi32(8, 4, 2, 1);
+    const __m128 met = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(mask), bit), bit));
+    const __m128 t = _mm_or_ps(_mm_and_ps(met, _mm_load_ps(hits.t)),
+                               _mm_andnot_ps(met, _mm_set1_ps(std::numeric_limits<float>::infinity())));
+    __m128 smallest = _mm_min_ps(t, _mm_shuffle_ps(t, t, _MM_SHUFFLE(2, 3, 0, 1)));
+    smallest = _mm_min_ps(smallest, _mm_shuffle_ps(smallest, smallest, _MM_SHUFFLE(1, 0, 3, 2)));
+    int at_smallest = _mm_movemask_ps(_mm_cmpeq_ps(t, smallest)) & mask;
+#else
+    real smallest = std::numeric_limits<real>::infinity();
+    for (int lane = 0; lane < 4; ++lane)
+        if ((mask & (1 << lane)) && hits.t[lane] < smallest)
+            smallest = hits.t[lane];
+    int at_smallest = 0;
+    for (int lane = 0; lane < 4; ++lane)
+        at_smallest |= ((mask & (1 << lane)) && hits.t[lane] == smallest) ? 1 << lane : 0;
+#endif
+    int lane = lowest[at_smallest & 15];
+    for (at_smallest &= at_smallest - 1; at_smallest != 0; at_smallest &= at_smallest - 1) { // a tie: rare
+        const int other = lowest[at_smallest & 15];
+        lane = b.id[other] > b.id[lane] ? other : lane;
+    }
+    return lane;
 }
 
 /// The lanes of `b` that hold spheres (bit l for lane l).
