@@ -7,6 +7,7 @@
 // the reference for the BVH is the library's flat list (accelerator_kind::flat).
 #include "rt_doctest.hpp"
 #include "slab_contract.hpp"
+#include "edge_leaks.hpp"
 #include "test_scenes.hpp"
 
 #include <array>
@@ -36,7 +37,7 @@
 
 namespace {
 
-using namespace rt_test; // test_scenes.hpp
+using namespace rt_test; // test_scenes.hpp, edge_leaks.hpp
 
 using rt::real;
 using rt::vec3;
@@ -48,38 +49,6 @@ rt::aabb bounds_of(const rt::mesh& m)
     for (const vec3& p : m.positions)
         box.grow(p);
     return box;
-}
-
-/// Targets on a closed mesh's surface that rays from inside are aimed at,
-/// each with the triangles it lies on: every vertex (its fan), every edge's
-/// midpoint and seven points along it (the edge's two triangles).
-struct surface_target {
-    vec3 point;
-    std::vector<std::size_t> triangles;
-};
-
-std::vector<surface_target> vertex_and_edge_targets(const rt::mesh& m)
-{
-    std::vector<surface_target> targets(m.positions.size());
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
-    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
-        const rt::index3& f = m.triangles[i];
-        for (int k = 0; k < 3; ++k) {
-            targets[f[std::size_t(k)]].triangles.push_back(i);
-            const std::uint32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
-            edges[{std::min(a, b), std::max(a, b)}].push_back(i);
-        }
-    }
-    for (std::size_t v = 0; v < m.positions.size(); ++v)
-        targets[v].point = m.positions[v];
-    for (const auto& [edge, triangles] : edges) {
-        const vec3 a = m.positions[edge.first], b = m.positions[edge.second];
-        targets.push_back({(a + b) * real(0.5), triangles});
-        for (int k = 1; k < 8; ++k)
-            if (k != 4)
-                targets.push_back({a + (real(k) / 8) * (b - a), triangles});
-    }
-    return targets;
 }
 
 // --- files written by the OBJ tests ---------------------------------------------

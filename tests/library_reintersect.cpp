@@ -197,7 +197,7 @@ TEST_CASE("triangle normals: the BVH's SIMD leaves, the flat list and the scalar
     }
     const rt::accelerator tree(s, rt::accelerator_kind::bvh);
     const rt::accelerator flat(s, rt::accelerator_kind::flat);
-    int hits = 0, differences = 0;
+    int hits = 0, differences = 0, excluded = 0;
     for (int k = 0; k < 20000; ++k) {
         const std::size_t target = g.next_below(std::uint32_t(s.shapes.size()));
         const rt::triangle& tri = std::get<rt::triangle>(s.shapes[target]);
@@ -223,12 +223,20 @@ TEST_CASE("triangle normals: the BVH's SIMD leaves, the flat list and the scalar
         }
         REQUIRE(in_tree == in_flat);
         REQUIRE(in_tree == in_list);
-        // A hit at t = 0 (the origin on a triangle, in rounding) can tie
-        // between two triangles, and the BVH, which prunes with t <= 0, does
-        // not always see the later one: left out here (4 of 20000 rays; the
-        // tie rule is the BVH's, not the normal's).
-        if (!in_tree || a.t == 0)
+        // A hit at t = 0 (the origin on a triangle, in rounding) is left out,
+        // whichever path finds it (274 of 20000 rays: pbrt's law puts many
+        // origins on or next to triangles). There the t of two triangles
+        // differ by less than their rounding error, so the order between them
+        // is noise: two triangles can tie at t = 0, and the BVH, which prunes
+        // with t <= 0, does not always see the later one; or the list's
+        // closest is at t = 0 and the BVH's at 6e-11, the box around the first
+        // being entered beyond 6e-11 in its own rounding. The tie rule and
+        // the pruning are the BVH's, not the normal's, which is what this
+        // case is about.
+        if (!in_tree || a.t == 0 || b.t == 0 || c.t == 0) {
+            excluded += in_tree ? 1 : 0;
             continue;
+        }
         ++hits;
         for (const rt::hit_record* other : {&b, &c}) {
             const bool same = a.t == other->t && a.point == other->point && a.point_error == other->point_error &&
@@ -239,7 +247,9 @@ TEST_CASE("triangle normals: the BVH's SIMD leaves, the flat list and the scalar
         }
     }
     MESSAGE("SIMD leaves (" << std::string(rt::bvh::uses_sse ? "SSE" : "scalar fallback") << ") against flat list and hit_shape: "
-                            << hits << " hits, " << differences << " records differing");
+                            << hits << " hits, " << differences << " records differing, " << excluded
+                            << " hits at t = 0 left out");
     CHECK(hits > 10000);
+    CHECK(excluded < 400);
     CHECK(differences == 0);
 }

@@ -9,6 +9,7 @@
 // so this suite calls no exercise and a student's more careful code is never
 // marked down.
 #include "rt_doctest.hpp"
+#include "edge_leaks.hpp"
 #include "test_scenes.hpp"
 
 #include <array>
@@ -35,42 +36,10 @@
 
 namespace {
 
-using namespace rt_test; // test_scenes.hpp
+using namespace rt_test; // test_scenes.hpp, edge_leaks.hpp
 
 using rt::real;
 using rt::vec3;
-
-/// Targets on a closed mesh's surface that rays from inside are aimed at,
-/// each with the triangles it lies on: every vertex (its fan), every edge's
-/// midpoint and seven points along it (the edge's two triangles).
-struct surface_target {
-    vec3 point;
-    std::vector<std::size_t> triangles;
-};
-
-std::vector<surface_target> vertex_and_edge_targets(const rt::mesh& m)
-{
-    std::vector<surface_target> targets(m.positions.size());
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edges;
-    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
-        const rt::index3& f = m.triangles[i];
-        for (int k = 0; k < 3; ++k) {
-            targets[f[std::size_t(k)]].triangles.push_back(i);
-            const std::uint32_t a = f[std::size_t(k)], b = f[std::size_t((k + 1) % 3)];
-            edges[{std::min(a, b), std::max(a, b)}].push_back(i);
-        }
-    }
-    for (std::size_t v = 0; v < m.positions.size(); ++v)
-        targets[v].point = m.positions[v];
-    for (const auto& [edge, triangles] : edges) {
-        const vec3 a = m.positions[edge.first], b = m.positions[edge.second];
-        targets.push_back({(a + b) * real(0.5), triangles});
-        for (int k = 1; k < 8; ++k)
-            if (k != 4)
-                targets.push_back({a + (real(k) / 8) * (b - a), triangles});
-    }
-    return targets;
-}
 
 // --- files written by the OBJ tests ---------------------------------------------
 
@@ -203,6 +172,28 @@ TEST_CASE("rays from inside closed meshes at vertices and edges: Moller-Trumbore
     }
     if (in_float)
         CHECK(total_mt_misses > 0); // the textbook method (this file's copy) leaks in float
+}
+
+TEST_CASE("a fused multiply-add in the edge functions lets rays through shared edges, the library's products never")
+{
+    // The two triangles of an edge compute its edge function as a b - c d
+    // and c d - a b. Fused into fma(a, b, -c d), as a compiler may do on any
+    // target with FMA unless told not to (-ffp-contract=off), one product is
+    // rounded and the other is not, and a ray aimed at the edge can find both
+    // values of the wrong sign (edge_leaks.hpp writes that test out). The
+    // library rounds each product on its own (rt::detail::rounded_product),
+    // whatever the compiler's contraction setting.
+    const vec3 c(real(0.3), real(-0.7), real(0.2));
+    const real r = real(1.7);
+    const edge_leak_count count = count_edge_leaks(
+        icosphere(3, c, r), {c, c + r * vec3(0.3f, -0.2f, 0.1f), c + r * vec3(-0.45f, 0.35f, 0.3f)});
+    MESSAGE("icosphere, " << count.rays << " rays at vertices and edges: fused edge functions let "
+                          << count.fused_leaks << " through, the library's test " << count.library_leaks);
+    CHECK(count.rays > 40000);
+    CHECK_MESSAGE(count.library_leaks == 0, "expected every ray to hit one of the target's triangles, found "
+                                                << count.library_leaks << " leaks");
+    if (in_float)
+        CHECK(count.fused_leaks > 0); // the contracted test leaks in float
 }
 
 TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, through shared edges and vertices")

@@ -23,11 +23,12 @@
 //    t = T / det. A shared edge is computed from the same two sheared corners
 //    in both of its triangles, so the two results are exact negatives of each
 //    other and no ray can pass between them; when an edge function rounds to
-//    exactly 0 the paper recomputes it in double, so a ray through an edge or
-//    a vertex is decided by the sign of the exact value. rt evaluates the edge
-//    functions in double every time (exact products of floats; see
-//    intersect_watertight for why). This is the library's default
-//    (hit_triangle, meshes, the BVH).
+//    exactly 0 the paper recomputes all three in double, so a ray through an
+//    edge or a vertex is decided by the sign of the exact value. rt does just
+//    that, with each product rounded on its own (detail::rounded_product): a
+//    compiler allowed to fuse a b - c d into one multiply-add would round the
+//    two triangles of an edge differently and let rays through.
+//    This is the library's default (hit_triangle, meshes, the BVH).
 //
 //    The watertight test also refuses a t that is not certainly positive given
 //    the rounding error of the computation (Physically Based Rendering, 3rd
@@ -98,6 +99,33 @@ constexpr F gamma_in(int n)
 {
     constexpr F u = std::numeric_limits<F>::epsilon() / 2;
     return (F(n) * u) / (1 - F(n) * u);
+}
+
+/// a b rounded to F, kept apart from whatever uses it: a compiler allowed to
+/// contract (GCC by default wherever the target has FMA, every ARM64 target
+/// among them) would otherwise fuse a b - c d into fma(a, b, -c d), and the
+/// two triangles of an edge, which compute a b - c d and c d - a b, would then
+/// round differently (measured before this: 160 leaks in 42246 rays of the
+/// stage-04 test, and 953 of 200,000 rays at edges in bench_triangle_contract).
+/// The empty asm statement claims to change the product, so nothing can be
+/// fused across it, and costs no instruction; MSVC does not contract unless
+/// asked (/fp:contract), and another compiler gets a volatile copy.
+template <class F>
+inline F rounded_product(F a, F b)
+{
+    F p = a * b;
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || (defined(__i386__) && defined(__SSE2__)))
+    if constexpr (std::is_same_v<F, float> || std::is_same_v<F, double>)
+        __asm__("" : "+x"(p));
+#elif (defined(__GNUC__) || defined(__clang__)) && defined(__aarch64__)
+    __asm__("" : "+w"(p));
+#elif defined(__GNUC__) || defined(__clang__)
+    __asm__("" : "+m"(p));
+#elif !defined(_MSC_VER)
+    const volatile F kept = p;
+    p = kept;
+#endif
+    return p;
 }
 
 /// The largest of |x|, |y|, |z|.
@@ -237,35 +265,29 @@ inline bool intersect_watertight(const watertight_ray& w, const real* v, real tm
     }
     const real Ax = s.X[0], Ay = s.Y[0], Bx = s.X[1], By = s.Y[1], Cx = s.X[2], Cy = s.Y[2];
 
-    // scaled barycentric coordinates: the edge functions
-    real U, V, W;
+    // scaled barycentric coordinates: the edge functions, each product
+    // rounded on its own (see detail::rounded_product). Rounding is
+    // monotonic, so fl(a b) - fl(c d) has the sign of a b - c d or is 0; two
+    // nonzero values of opposite signs are a miss, whatever the third is.
+    using detail::rounded_product;
+    real U = rounded_product(Cx, By) - rounded_product(Cy, Bx);
+    real V = rounded_product(Ax, Cy) - rounded_product(Ay, Cx);
+    if ((U < 0 && V > 0) || (U > 0 && V < 0))
+        return false;
+    real W = rounded_product(Bx, Ay) - rounded_product(By, Ax);
     if constexpr (std::is_same_v<real, float>) {
-        // In double: a product of two floats is exact there, so each edge
-        // function is the exact a b - c d rounded once, its sign always right,
-        // and 0 only when the ray passes exactly through the edge. This is the
-        // paper's double-precision fallback done every time rather than only
-        // when a float result is 0, for a reason the paper could leave aside:
-        // a compiler may fuse a b - c d into one multiply-add (GCC does under
-        // -march=native, and on every ARM64 target), and in float that breaks
-        // the exact antisymmetry of a shared edge between its two triangles
-        // (measured: 160 leaks in 42246 rays of the stage-04 test). In double
-        // the fused and unfused results are the same number.
-        U = real(double(Cx) * double(By) - double(Cy) * double(Bx));
-        V = real(double(Ax) * double(Cy) - double(Ay) * double(Cx));
-        if ((U < 0 && V > 0) || (U > 0 && V < 0)) // two of opposite signs: a miss, whatever W is
-            return false;
-        W = real(double(Bx) * double(Ay) - double(By) * double(Ax));
-    } else {
-        // rt::real = double: rounding is monotonic, so fl(a b) - fl(c d) keeps
-        // the sign of a b - c d or gives 0 (then both triangles of an edge see
-        // 0 and count the ray as on the edge). Build without fused multiply-add
-        // contraction (-ffp-contract=off) to keep this on FMA targets.
-        U = Cx * By - Cy * Bx;
-        V = Ax * Cy - Ay * Cx;
-        if ((U < 0 && V > 0) || (U > 0 && V < 0))
-            return false;
-        W = Bx * Ay - By * Ax;
+        // Woop et al.'s fallback: a 0 may be a rounded nonzero value, so all
+        // three are recomputed in double, where a product of two floats is
+        // exact and each edge function is the exact value rounded once (a
+        // fused multiply-add gives the same number there)
+        if (U == 0 || V == 0 || W == 0) {
+            U = real(double(Cx) * double(By) - double(Cy) * double(Bx));
+            V = real(double(Ax) * double(Cy) - double(Ay) * double(Cx));
+            W = real(double(Bx) * double(Ay) - double(By) * double(Ax));
+        }
     }
+    // (rt::real = double: nothing wider to fall back to; a 0 is then seen by
+    // both triangles of the edge alike, and the ray counts as on the edge)
     if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
         return false;
     s.U = U;

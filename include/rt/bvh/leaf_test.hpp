@@ -5,9 +5,9 @@
 // and operation for operation in the same order, so the SIMD test and the
 // scalar one give the same bits: the tests compare them on rays through shared
 // edges and vertices. With SSE2 (every x86-64 compiler) the four triangles of a
-// block are tested in 4-wide registers (the edge functions in double, two lanes
-// per register, or four with AVX); elsewhere, and for rt::real = double, one
-// lane at a time (intersect_block_scalar).
+// block are tested in 4-wide registers (the edge functions in float, and in
+// double for a lane where one rounds to 0, as Woop et al. do); elsewhere, and
+// for rt::real = double, one lane at a time (intersect_block_scalar).
 #pragma once
 
 #include <cstdint>
@@ -164,9 +164,10 @@ inline wide4 widen(__m128 a)
 }
 
 /// a b - c d for four lanes, each product and the difference in double, the
-/// result rounded to float: what intersect_watertight computes for one edge
-/// function, lane by lane, bit for bit (a product of two floats is exact in
-/// double, and the difference is rounded to double then to float in both).
+/// result rounded to float: the fallback of intersect_watertight for an edge
+/// function that rounds to 0 in float, lane by lane, bit for bit (a product of
+/// two floats is exact in double, and the difference is rounded to double then
+/// to float in both).
 inline __m128 edge_function4(const wide4& a, const wide4& b, const wide4& c, const wide4& d)
 {
 #if RT_BVH_AVX
@@ -178,6 +179,23 @@ inline __m128 edge_function4(const wide4& a, const wide4& b, const wide4& c, con
 #endif
 }
 
+/// a b for four lanes, rounded to float and never fused with what uses it:
+/// detail::rounded_product (watertight.hpp) four lanes at a time.
+inline __m128 rounded_product4(__m128 a, __m128 b)
+{
+    __m128 p = _mm_mul_ps(a, b);
+#if defined(__GNUC__) || defined(__clang__)
+    __asm__("" : "+x"(p));
+#endif
+    return p;
+}
+
+/// Lane by lane, `mask` ? a : b (SSE2 has no blend).
+inline __m128 select4(__m128 mask, __m128 a, __m128 b)
+{
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
+
 /// max_abs3 (watertight.hpp) of four lanes: the largest of |p|, |q|, |s|.
 inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 {
@@ -187,7 +205,8 @@ inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 
 /// The watertight test of four triangles at once, one per lane: the same
 /// arithmetic as intersect_watertight and watertight_finish (translation,
-/// shear, edge functions in double, the sign test, det, T, t, the range, the
+/// shear, edge functions in float with the double fallback of a lane where one
+/// is 0, the sign test, det, T, t, the range, the
 /// distance check of watertight_t_error and the barycentrics), operation for
 /// operation in the same order, so each lane computes the same bits and
 /// intersect_block_scalar gives the same result (tests/stage04_triangle.cpp
@@ -223,14 +242,24 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
     const __m128 By = _mm_sub_ps(by, _mm_mul_ps(r.Sy, bz));
     const __m128 Cx = _mm_sub_ps(cx, _mm_mul_ps(r.Sx, cz));
     const __m128 Cy = _mm_sub_ps(cy, _mm_mul_ps(r.Sy, cz));
-    // edge functions, and the sign test: a miss when some are < 0 and some >
-    // 0. A NaN counts as both (cmpnge, cmpnle), so an unused or sphere lane
-    // (NaN corners) fails here; it would fail the range test anyway (its t is
-    // NaN), but a block whose only other lanes miss now ends here.
-    const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx), Cy2 = widen(Cy);
-    const __m128 U = edge_function4(Cx2, By2, Cy2, Bx2);
-    const __m128 V = edge_function4(Ax2, Cy2, Ay2, Cx2);
-    const __m128 W = edge_function4(Bx2, Ay2, By2, Ax2);
+    // edge functions, each product rounded on its own; where one of a lane's
+    // is 0 (a rounded nonzero value, perhaps), all three are recomputed in
+    // double, as intersect_watertight does. Then the sign test: a miss when
+    // some are < 0 and some > 0. A NaN counts as both (cmpnge, cmpnle), so an
+    // unused or sphere lane (NaN corners) fails here; it would fail the range
+    // test anyway (its t is NaN), but a block whose only other lanes miss now
+    // ends here.
+    __m128 U = _mm_sub_ps(rounded_product4(Cx, By), rounded_product4(Cy, Bx));
+    __m128 V = _mm_sub_ps(rounded_product4(Ax, Cy), rounded_product4(Ay, Cx));
+    __m128 W = _mm_sub_ps(rounded_product4(Bx, Ay), rounded_product4(By, Ax));
+    const __m128 zeros = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(U, zero), _mm_cmpeq_ps(V, zero)), _mm_cmpeq_ps(W, zero));
+    if (_mm_movemask_ps(zeros) != 0) { // rays through edges and vertices: rare
+        const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx),
+                    Cy2 = widen(Cy);
+        U = select4(zeros, edge_function4(Cx2, By2, Cy2, Bx2), U);
+        V = select4(zeros, edge_function4(Ax2, Cy2, Ay2, Cx2), V);
+        W = select4(zeros, edge_function4(Bx2, Ay2, By2, Ax2), W);
+    }
     const __m128 negative =
         _mm_or_ps(_mm_or_ps(_mm_cmpnge_ps(U, zero), _mm_cmpnge_ps(V, zero)), _mm_cmpnge_ps(W, zero));
     const __m128 positive =
