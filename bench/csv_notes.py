@@ -1,6 +1,6 @@
 """csv_notes.py - reads the benchmarks' CSV files: '# key: value' note lines, then a
 header and rows; and writes tables made from them into a document, between two
-marker lines (bench/plot.py, bench/embree_runs.py, bench/frame_runs.py; standard
+marker lines (bench/plot.py and the *_runs.py scripts; standard
 library only)."""
 
 import argparse
@@ -36,19 +36,21 @@ def write_block(doc_path, begin, end, text):
     os.replace(doc_path + ".tmp", doc_path)
 
 
-def two_runs_main(argv, description, make_text, begin, end, wrote):
-    """The command line of embree_runs.py and frame_runs.py: two run folders, and
-    --doc, the document whose block between `begin` and `end` receives
-    make_text(first, second) (printed without it); `wrote` starts the message."""
+def runs_main(argv, description, make_text, begin, end, wrote, runs=("first", "second")):
+    """The command line of the *_runs.py scripts: one folder per name in `runs`
+    (each a run's --out folder), and --doc, the document whose block between
+    `begin` and `end` receives make_text(*folders) (printed without it); `wrote`
+    starts the message."""
     parser = argparse.ArgumentParser(description=description)
-    parser.add_argument("first", help="the first run's --out folder")
-    parser.add_argument("second", help="the second run's --out folder")
+    for name in runs:
+        parser.add_argument(name, help=f"the {name} run's --out folder")
     parser.add_argument("--doc", help="the document whose marked block to replace")
     args = parser.parse_args(argv)
-    text = make_text(args.first, args.second)
+    folders = [getattr(args, name) for name in runs]
+    text = make_text(*folders)
     if not args.doc:
         sys.stdout.write(text)
         return 0
     write_block(args.doc, begin, end, text)
-    print(wrote, args.first, "and", args.second, "into", args.doc)
+    print(wrote, " and ".join(folders), "into", args.doc)
     return 0

@@ -17,7 +17,7 @@ Python 3 standard library only.
 import os
 import sys
 
-from csv_notes import read, two_runs_main  # beside this file
+from csv_notes import read, runs_main  # beside this file
 
 BEGIN, END = "<!-- embree-runs:begin -->", "<!-- embree-runs:end -->"
 SETS = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
@@ -89,7 +89,7 @@ def tables(first, second):
 
 
 def main(argv=None):
-    return two_runs_main(argv, __doc__.split("\n")[0], lambda first, second: tables(load(first), load(second)),
+    return runs_main(argv, __doc__.split("\n")[0], lambda first, second: tables(load(first), load(second)),
                          BEGIN, END, "embree_runs.py: wrote the tables of")
 
 

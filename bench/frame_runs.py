@@ -16,7 +16,7 @@ brackets. Without --doc it is printed. Python 3 standard library only.
 import os
 import sys
 
-from csv_notes import read, two_runs_main  # beside this file
+from csv_notes import read, runs_main  # beside this file
 
 BEGIN, END = "<!-- frame-runs:begin -->", "<!-- frame-runs:end -->"
 
@@ -61,7 +61,7 @@ def table(first, second):
 
 
 def main(argv=None):
-    return two_runs_main(argv, __doc__.split("\n")[0], lambda first, second: table(load(first), load(second)),
+    return runs_main(argv, __doc__.split("\n")[0], lambda first, second: table(load(first), load(second)),
                          BEGIN, END, "frame_runs.py: wrote the table of")
 
 
