@@ -34,6 +34,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -753,12 +754,18 @@ bool holds_in_this_build(const std::string& name)
 
 int main(int argc, char** argv)
 {
-    if (argc < 2) {
-        std::cerr << "usage: docs_figures REPO_ROOT [--print]\n";
+    const bool print = argc == 3 && std::string(argv[2]) == "--print";
+    if (argc < 2 || argc > 3 || (argc == 3 && !print) || std::string(argv[1]).rfind("-", 0) == 0) {
+        std::cerr << "usage: docs_figures REPO_ROOT [--print]   (REPO_ROOT holds docs/ and scenes/)\n";
         return 2;
     }
     const fs::path root = argv[1];
-    const bool print = argc > 2 && std::string(argv[2]) == "--print";
+    std::error_code missing;
+    if (!fs::is_directory(root / "docs", missing)) {
+        std::cerr << "docs_figures: expected a folder " << (root / "docs").string()
+                  << " (the repository's root as the first argument), found none\n";
+        return 2;
+    }
     const std::map<std::string, figure_function> known = figures(root);
     std::map<std::string, std::string> computed; // cache: each figure once
     std::vector<std::string> skipped;
