@@ -100,6 +100,12 @@ inline ray_generator make_ray_generator(const camera& cam, int nx, int ny)
     if (!detail::finite(gen.basis.u) || !detail::finite(gen.basis.v) || !detail::finite(gen.basis.w))
         throw error("camera: expected a camera frame, found none (NaN); eye must differ from look_at and up must "
                     "not be parallel to look_at - eye");
+    // checked here, not left to the window: tan(90 degrees) is about -2e7 in
+    // float (an empty window) but 1.6e16 in double (a huge one, accepted)
+    if (!cam.plane && cam.kind == projection::perspective && cam.fov_degrees &&
+        !(*cam.fov_degrees > 0 && *cam.fov_degrees < 180))
+        throw error("camera: expected a field of view in (0, 180) degrees, found " +
+                    detail::short_number(double(*cam.fov_degrees)));
     gen.plane = effective_window(cam, nx, ny);
     const window& p = gen.plane;
     if (!(p.l < p.r && p.b < p.t && std::isfinite(p.r - p.l) && std::isfinite(p.t - p.b)))
