@@ -31,9 +31,15 @@ def write_block(doc_path, begin, end, text):
         raise SystemExit(f"{doc_path}: expected one '{begin}' line and, after it, one '{end}' line; "
                          f"add them around the tables to replace")
     start, stop = doc.index(begin) + len(begin), doc.index(end)
-    with open(doc_path + ".tmp", "w", encoding="utf-8") as f:
-        f.write(doc[:start] + "\n" + text + doc[stop:])
-    os.replace(doc_path + ".tmp", doc_path)
+    temporary = doc_path + ".tmp"
+    try:
+        with open(temporary, "w", encoding="utf-8") as f:
+            f.write(doc[:start] + "\n" + text + doc[stop:])
+        os.replace(temporary, doc_path)
+    except BaseException:  # an error or an interruption (Ctrl-C) leaves no half-written file behind
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        raise
 
 
 def runs_main(argv, description, make_text, begin, end, wrote, runs=("first", "second")):

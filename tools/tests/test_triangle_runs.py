@@ -61,6 +61,23 @@ class Table(unittest.TestCase):
         self.assertNotIn("old table", text)
         self.assertFalse(Path(str(doc) + ".tmp").exists())
 
+    def test_an_interrupted_write_leaves_the_document_and_no_temporary_file(self):
+        doc = self.tmp / "doc.md"
+        doc.write_text(f"{triangle_runs.BEGIN}\nold table\n{triangle_runs.END}\n")
+        import csv_notes  # noqa: E402 (beside triangle_runs.py)
+        real_replace = csv_notes.os.replace
+
+        def interrupted(*args):
+            raise KeyboardInterrupt()
+        csv_notes.os.replace = interrupted
+        try:
+            with self.assertRaises(KeyboardInterrupt):
+                triangle_runs.main([str(self.run), "--doc", str(doc)])
+        finally:
+            csv_notes.os.replace = real_replace
+        self.assertIn("old table", doc.read_text())
+        self.assertFalse(Path(str(doc) + ".tmp").exists())
+
     def test_a_run_without_the_contract_program_is_refused_by_name(self):
         (self.run / "triangle_contract.csv").unlink()
         doc = self.tmp / "doc.md"
