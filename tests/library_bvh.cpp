@@ -449,6 +449,36 @@ TEST_CASE("cutting references at a plane: each piece on its side, the pieces wit
     }
 }
 
+TEST_CASE("SAH costs and an overlap threshold that are not finite numbers of the right sign are refused by name")
+{
+    const rt::scene s = scene_of(icosphere(1, vec3(0), 1));
+    const real nan = std::numeric_limits<real>::quiet_NaN();
+    struct bad {
+        real traversal, intersection, overlap;
+    };
+    for (const bad& b : {bad{nan, 1, 0}, bad{-1, 1, 0}, bad{1, 0, 0}, bad{1, -2, 0}, bad{1, rt::infinity, 0},
+                         bad{1, 1, nan}, bad{1, 1, -1}}) {
+        rt::bvh_options options;
+        options.traversal_cost = b.traversal;
+        options.intersection_cost = b.intersection;
+        options.spatial_overlap = b.overlap;
+        std::string message;
+        try {
+            const rt::accelerator tree(s, rt::accelerator_kind::bvh, options);
+        } catch (const rt::error& e) {
+            message = e.what();
+        }
+        INFO("costs " << b.traversal << ", " << b.intersection << ", overlap " << b.overlap << ": got '" << message
+                      << "'");
+        CHECK(message.find("bvh_options: expected traversal_cost >= 0, intersection_cost > 0") != std::string::npos);
+    }
+    rt::bvh_options free_walk; // a traversal cost of 0 is a choice, not an error
+    free_walk.traversal_cost = 0;
+    const rt::accelerator tree(s, rt::accelerator_kind::bvh, free_walk);
+    rt::hit_record rec;
+    CHECK(tree.closest_hit(rt::ray{vec3(0, 0, 3), vec3(0, 0, -1)}, 0, rt::infinity, rec));
+}
+
 TEST_CASE("a spatial budget out of range is held in [0, 4] times the primitives: no overflow, no allocation beyond it")
 {
     rt::mesh m = icosphere(2, vec3(0), 1);

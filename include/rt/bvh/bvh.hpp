@@ -41,6 +41,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <mutex>
@@ -82,6 +83,7 @@ public:
             return;
         if (count >= std::size_t(leaf_flag))
             throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(count));
+        check(options);
         bvh_options used = options;
         used.max_depth = std::max(1, std::min(used.max_depth, max_depth));
         used.max_leaf_size = std::max<std::size_t>(1, used.max_leaf_size);
@@ -187,6 +189,19 @@ public:
     static constexpr int stack_size = (bvh_width - 1) * max_depth + bvh_width;
 
 private:
+    /// The SAH costs and the overlap threshold are refused when they are not
+    /// finite numbers of the right sign: a NaN would not break the tree but
+    /// would silently build a useless one (every node split to the bottom).
+    static void check(const bvh_options& o)
+    {
+        auto is = [](real x, bool positive) { return std::isfinite(x) && (positive ? x > 0 : x >= 0); };
+        if (!is(o.traversal_cost, false) || !is(o.intersection_cost, true) || !is(o.spatial_overlap, false))
+            throw error("bvh_options: expected traversal_cost >= 0, intersection_cost > 0 and spatial_overlap >= 0, "
+                        "all finite, found " + std::to_string(double(o.traversal_cost)) + ", " +
+                        std::to_string(double(o.intersection_cost)) + " and " +
+                        std::to_string(double(o.spatial_overlap)));
+    }
+
     /// Each leaf's primitives as blocks of four (layout.hpp), in the order the
     /// nodes meet the leaves (depth first): first where each leaf's blocks
     /// go, one pass over the nodes, then the blocks themselves on threads
