@@ -42,7 +42,6 @@ using namespace rt_test; // test_scenes.hpp, edge_leaks.hpp
 using rt::real;
 using rt::vec3;
 
-
 rt::aabb bounds_of(const rt::mesh& m)
 {
     rt::aabb box;
@@ -50,16 +49,6 @@ rt::aabb bounds_of(const rt::mesh& m)
         box.grow(p);
     return box;
 }
-
-// --- files written by the OBJ tests ---------------------------------------------
-
-} // namespace
-
-// =============================================================================
-// One triangle, worked out by hand
-// =============================================================================
-
-namespace {
 
 } // namespace
 

@@ -30,17 +30,6 @@ namespace {
 using rt::real;
 using rt::vec3;
 
-
-// --- meshes built here ------------------------------------------------------
-
-/// Targets on a closed mesh's surface that rays from inside are aimed at,
-/// each with the triangles it lies on: every vertex (its fan), every edge's
-/// midpoint and seven points along it (the edge's two triangles).
-struct surface_target {
-    vec3 point;
-    std::vector<std::size_t> triangles;
-};
-
 // --- files written by the OBJ tests ---------------------------------------------
 
 std::filesystem::path scratch_folder(const std::string& name)
@@ -70,14 +59,6 @@ bool one_line(const std::string& text)
 {
     return text.find('\n') == std::string::npos && text.find('\r') == std::string::npos;
 }
-
-} // namespace
-
-// =============================================================================
-// One triangle, worked out by hand
-// =============================================================================
-
-namespace {
 
 } // namespace
 

@@ -35,27 +35,6 @@ using namespace rt_test; // test_scenes.hpp
 using rt::real;
 using rt::vec3;
 
-
-
-
-/// Targets on a closed mesh's surface that rays from inside are aimed at,
-/// each with the triangles it lies on: every vertex (its fan), every edge's
-/// midpoint and seven points along it (the edge's two triangles).
-struct surface_target {
-    vec3 point;
-    std::vector<std::size_t> triangles;
-};
-
-// --- files written by the OBJ tests ---------------------------------------------
-
-} // namespace
-
-// =============================================================================
-// One triangle, worked out by hand
-// =============================================================================
-
-namespace {
-
 } // namespace
 
 TEST_CASE("next_up and next_down step one representable value, as std::nextafter does")

@@ -41,8 +41,6 @@ using namespace rt_test; // test_scenes.hpp, edge_leaks.hpp
 using rt::real;
 using rt::vec3;
 
-// --- files written by the OBJ tests ---------------------------------------------
-
 /// Moller-Trumbore, copied here from the paper (Moller, Trumbore, "Fast, minimum
 /// storage ray-triangle intersection", JGT 1997, sec. 2): P = d x e2, det = e1.P,
 /// T = o - a, u = T.P / det, Q = T x e1, v = d.Q / det, t = e2.Q / det.
@@ -66,14 +64,6 @@ bool moller_trumbore_copy(const rt::triangle& tri, const rt::ray& r, real tmin, 
     const real t = glm::dot(e2, Q) * inv;
     return tmin <= t && t <= tmax;
 }
-
-} // namespace
-
-// =============================================================================
-// One triangle, worked out by hand
-// =============================================================================
-
-namespace {
 
 } // namespace
 

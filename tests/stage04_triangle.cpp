@@ -43,16 +43,6 @@ using namespace rt_test; // test_scenes.hpp
 using rt::real;
 using rt::vec3;
 
-/// Targets on a closed mesh's surface that rays from inside are aimed at,
-/// each with the triangles it lies on: every vertex (its fan), every edge's
-/// midpoint and seven points along it (the edge's two triangles).
-struct surface_target {
-    vec3 point;
-    std::vector<std::size_t> triangles;
-};
-
-// --- files written by the OBJ tests ---------------------------------------------
-
 } // namespace
 
 // =============================================================================
@@ -163,10 +153,6 @@ TEST_CASE("Moller-Trumbore and the watertight test find t and the barycentrics w
 // =============================================================================
 // The BVH against the list
 // =============================================================================
-
-namespace {
-
-} // namespace
 
 TEST_CASE("the list returns the closest hit and the any-hit answer of the library's BVH on random scenes")
 {
