@@ -105,11 +105,13 @@ constexpr F gamma_in(int n)
 /// contract (GCC by default wherever the target has FMA, every ARM64 target
 /// among them) would otherwise fuse a b - c d into fma(a, b, -c d), and the
 /// two triangles of an edge, which compute a b - c d and c d - a b, would then
-/// round differently (measured before this: 160 leaks in 42246 rays of the
-/// stage-04 test, and 953 of 200,000 rays at edges in bench_triangle_contract).
+/// round differently and let rays through (library_watertight's case "a fused
+/// multiply-add in the edge functions lets rays through shared edges" counts
+/// them; docs/stages/04-going-further.md quotes the count).
 /// The empty asm statement claims to change the product, so nothing can be
-/// fused across it, and costs no instruction; MSVC does not contract unless
-/// asked (/fp:contract), and another compiler gets a volatile copy.
+/// fused across it, and costs no instruction; MSVC 2022 does not contract
+/// unless asked (/fp:contract), and an older MSVC or another compiler gets a
+/// volatile copy.
 template <class F>
 inline F rounded_product(F a, F b)
 {
@@ -121,7 +123,7 @@ inline F rounded_product(F a, F b)
     __asm__("" : "+w"(p));
 #elif defined(__GNUC__) || defined(__clang__)
     __asm__("" : "+m"(p));
-#elif !defined(_MSC_VER)
+#elif !defined(_MSC_VER) || _MSC_VER < 1930
     const volatile F kept = p;
     p = kept;
 #endif
