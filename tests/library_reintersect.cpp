@@ -224,7 +224,7 @@ TEST_CASE("triangle normals: the BVH's SIMD leaves, the flat list and the scalar
         REQUIRE(in_tree == in_flat);
         REQUIRE(in_tree == in_list);
         // A hit at t = 0 (the origin on a triangle, in rounding) is left out,
-        // whichever path finds it (274 of 20000 rays: pbrt's law puts many
+        // whichever path finds it (326 of 20000 rays: pbrt's law puts many
         // origins on or next to triangles). There the t of two triangles
         // differ by less than their rounding error, so the order between them
         // is noise: two triangles can tie at t = 0, and the BVH, which prunes

@@ -24,10 +24,12 @@
 //    in both of its triangles, so the two results are exact negatives of each
 //    other and no ray can pass between them; when an edge function rounds to
 //    exactly 0 the paper recomputes all three in double, so a ray through an
-//    edge or a vertex is decided by the sign of the exact value. rt does just
-//    that, with each product rounded on its own (detail::rounded_product): a
+//    edge or a vertex is decided by the sign of the exact value. rt rejects
+//    in float (each product rounded on its own, detail::rounded_product: a
 //    compiler allowed to fuse a b - c d into one multiply-add would round the
-//    two triangles of an edge differently and let rays through.
+//    two triangles of an edge differently and let rays through) and
+//    recomputes in double every triangle that may be hit, whose t then comes
+//    from the exact edge functions rounded once.
 //    This is the library's default (hit_triangle, meshes, the BVH).
 //
 //    The watertight test also refuses a t that is not certainly positive given
@@ -267,31 +269,34 @@ inline bool intersect_watertight(const watertight_ray& w, const real* v, real tm
     }
     const real Ax = s.X[0], Ay = s.Y[0], Bx = s.X[1], By = s.Y[1], Cx = s.X[2], Cy = s.Y[2];
 
-    // scaled barycentric coordinates: the edge functions, each product
-    // rounded on its own (see detail::rounded_product). Rounding is
-    // monotonic, so fl(a b) - fl(c d) has the sign of a b - c d or is 0; two
-    // nonzero values of opposite signs are a miss, whatever the third is.
+    // scaled barycentric coordinates: the edge functions, first in float with
+    // each product rounded on its own (see detail::rounded_product). Rounding
+    // is monotonic, so fl(a b) - fl(c d) has the sign of a b - c d or is 0:
+    // two nonzero values of opposite signs are a miss, whatever the rest.
     using detail::rounded_product;
     real U = rounded_product(Cx, By) - rounded_product(Cy, Bx);
     real V = rounded_product(Ax, Cy) - rounded_product(Ay, Cx);
     if ((U < 0 && V > 0) || (U > 0 && V < 0))
         return false;
     real W = rounded_product(Bx, Ay) - rounded_product(By, Ax);
+    if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
+        return false;
     if constexpr (std::is_same_v<real, float>) {
-        // Woop et al.'s fallback: a 0 may be a rounded nonzero value, so all
-        // three are recomputed in double, where a product of two floats is
-        // exact and each edge function is the exact value rounded once (a
-        // fused multiply-add gives the same number there)
-        if (U == 0 || V == 0 || W == 0) {
-            U = real(double(Cx) * double(By) - double(Cy) * double(Bx));
-            V = real(double(Ax) * double(Cy) - double(Ay) * double(Cx));
-            W = real(double(Bx) * double(Ay) - double(By) * double(Ax));
-        }
+        // A possible hit: the three again in double, where a product of two
+        // floats is exact, so each is the exact value rounded once: the
+        // paper's fallback for a 0 (which may be a rounded nonzero value),
+        // done for every triangle that gets this far, because t and the
+        // barycentrics are computed from these values and float's are less
+        // accurate (on a sliver, a t of 2e-4 for a true 1e-6: a ray leaving
+        // the triangle hit it again beyond a tmin of 1e-4).
+        U = real(double(Cx) * double(By) - double(Cy) * double(Bx));
+        V = real(double(Ax) * double(Cy) - double(Ay) * double(Cx));
+        W = real(double(Bx) * double(Ay) - double(By) * double(Ax));
+        if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
+            return false;
     }
     // (rt::real = double: nothing wider to fall back to; a 0 is then seen by
     // both triangles of the edge alike, and the ray counts as on the edge)
-    if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0))
-        return false;
     s.U = U;
     s.V = V;
     s.W = W;

@@ -190,12 +190,6 @@ inline __m128 rounded_product4(__m128 a, __m128 b)
     return p;
 }
 
-/// Lane by lane, `mask` ? a : b (SSE2 has no blend).
-inline __m128 select4(__m128 mask, __m128 a, __m128 b)
-{
-    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
-}
-
 /// max_abs3 (watertight.hpp) of four lanes: the largest of |p|, |q|, |s|.
 inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 {
@@ -242,24 +236,27 @@ RT_BVH_INLINE int intersect_block_sse(const triangle_block& b, const leaf_ray& r
     const __m128 By = _mm_sub_ps(by, _mm_mul_ps(r.Sy, bz));
     const __m128 Cx = _mm_sub_ps(cx, _mm_mul_ps(r.Sx, cz));
     const __m128 Cy = _mm_sub_ps(cy, _mm_mul_ps(r.Sy, cz));
-    // edge functions, each product rounded on its own; where one of a lane's
-    // is 0 (a rounded nonzero value, perhaps), all three are recomputed in
-    // double, as intersect_watertight does. Then the sign test: a miss when
-    // some are < 0 and some > 0. A NaN counts as both (cmpnge, cmpnle), so an
-    // unused or sphere lane (NaN corners) fails here; it would fail the range
-    // test anyway (its t is NaN), but a block whose only other lanes miss now
-    // ends here.
-    __m128 U = _mm_sub_ps(rounded_product4(Cx, By), rounded_product4(Cy, Bx));
-    __m128 V = _mm_sub_ps(rounded_product4(Ax, Cy), rounded_product4(Ay, Cx));
-    __m128 W = _mm_sub_ps(rounded_product4(Bx, Ay), rounded_product4(By, Ax));
-    const __m128 zeros = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(U, zero), _mm_cmpeq_ps(V, zero)), _mm_cmpeq_ps(W, zero));
-    if (_mm_movemask_ps(zeros) != 0) { // rays through edges and vertices: rare
-        const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx),
-                    Cy2 = widen(Cy);
-        U = select4(zeros, edge_function4(Cx2, By2, Cy2, Bx2), U);
-        V = select4(zeros, edge_function4(Ax2, Cy2, Ay2, Cx2), V);
-        W = select4(zeros, edge_function4(Bx2, Ay2, By2, Ax2), W);
+    // edge functions: first in float, each product rounded on its own, to
+    // reject the lanes whose nonzero values have mixed signs (exact signs:
+    // see intersect_watertight) and the unused and sphere lanes (NaN in row
+    // 4, b.y); then, as intersect_watertight does for a possible hit, in
+    // double for all four lanes. A NaN edge function from finite corners (an
+    // overflow in float) is not rejected here: double decides it.
+    {
+        const __m128 U = _mm_sub_ps(rounded_product4(Cx, By), rounded_product4(Cy, Bx));
+        const __m128 V = _mm_sub_ps(rounded_product4(Ax, Cy), rounded_product4(Ay, Cx));
+        const __m128 W = _mm_sub_ps(rounded_product4(Bx, Ay), rounded_product4(By, Ax));
+        const __m128 below = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(U, zero), _mm_cmplt_ps(V, zero)), _mm_cmplt_ps(W, zero));
+        const __m128 above = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(U, zero), _mm_cmpgt_ps(V, zero)), _mm_cmpgt_ps(W, zero));
+        const __m128 row4 = _mm_load_ps(b.v[4]);
+        const __m128 out = _mm_or_ps(_mm_and_ps(below, above), _mm_cmpunord_ps(row4, row4));
+        if (_mm_movemask_ps(out) == 15)
+            return 0;
     }
+    const wide4 Ax2 = widen(Ax), Ay2 = widen(Ay), Bx2 = widen(Bx), By2 = widen(By), Cx2 = widen(Cx), Cy2 = widen(Cy);
+    const __m128 U = edge_function4(Cx2, By2, Cy2, Bx2);
+    const __m128 V = edge_function4(Ax2, Cy2, Ay2, Cx2);
+    const __m128 W = edge_function4(Bx2, Ay2, By2, Ax2);
     const __m128 negative =
         _mm_or_ps(_mm_or_ps(_mm_cmpnge_ps(U, zero), _mm_cmpnge_ps(V, zero)), _mm_cmpnge_ps(W, zero));
     const __m128 positive =
