@@ -1,7 +1,7 @@
 // edge_leaks.hpp - rays from inside a closed mesh at its vertices and edges,
 // and what a fused multiply-add in the watertight test's edge functions does
 // to them (library_watertight.cpp, and docs_figures.cpp for the stage-04
-// page's figure).
+// page's figures: both run icosphere_edge_leaks).
 //
 // The watertight test (Woop, Benthin, Wald 2013; include/rt/watertight.hpp)
 // computes the edge function of an edge shared by two triangles from the same
@@ -26,6 +26,8 @@
 #include <rt/triangle_shape.hpp>
 #include <rt/vec.hpp>
 #include <rt/watertight.hpp>
+
+#include "test_scenes.hpp" // icosphere
 
 namespace rt_test {
 
@@ -116,6 +118,17 @@ inline edge_leak_count count_edge_leaks(const rt::mesh& m, const std::vector<rt:
             count.library_leaks += library ? 0 : 1;
         }
     return count;
+}
+
+/// The case library_watertight runs and the stage-04 page quotes: an
+/// icosphere of 1280 triangles seen from its centre and two other points
+/// inside.
+inline edge_leak_count icosphere_edge_leaks()
+{
+    const rt::vec3 c(rt::real(0.3), rt::real(-0.7), rt::real(0.2));
+    const rt::real r = rt::real(1.7);
+    return count_edge_leaks(icosphere(3, c, r),
+                            {c, c + r * rt::vec3(0.3f, -0.2f, 0.1f), c + r * rt::vec3(-0.45f, 0.35f, 0.3f)});
 }
 
 } // namespace rt_test

@@ -173,10 +173,7 @@ TEST_CASE("a fused multiply-add in the edge functions lets rays through shared e
     // values of the wrong sign (edge_leaks.hpp writes that test out). The
     // library rounds each product on its own (rt::detail::rounded_product),
     // whatever the compiler's contraction setting.
-    const vec3 c(real(0.3), real(-0.7), real(0.2));
-    const real r = real(1.7);
-    const edge_leak_count count = count_edge_leaks(
-        icosphere(3, c, r), {c, c + r * vec3(0.3f, -0.2f, 0.1f), c + r * vec3(-0.45f, 0.35f, 0.3f)});
+    const edge_leak_count count = icosphere_edge_leaks();
     MESSAGE("icosphere, " << count.rays << " rays at vertices and edges: fused edge functions let "
                           << count.fused_leaks << " through, the library's test " << count.library_leaks);
     CHECK(count.rays > 40000);

@@ -5,9 +5,10 @@
 // and operation for operation in the same order, so the SIMD test and the
 // scalar one give the same bits: the tests compare them on rays through shared
 // edges and vertices. With SSE2 (every x86-64 compiler) the four triangles of a
-// block are tested in 4-wide registers (the edge functions in float, and in
-// double for a lane where one rounds to 0, as Woop et al. do); elsewhere, and
-// for rt::real = double, one lane at a time (intersect_block_scalar).
+// block are tested in 4-wide registers (certain misses rejected in float, the
+// edge functions of a block with a possible hit computed in double, two lanes
+// per register or four with AVX); elsewhere, and for rt::real = double, one
+// lane at a time (intersect_block_scalar).
 #pragma once
 
 #include <cstdint>
@@ -164,10 +165,9 @@ inline wide4 widen(__m128 a)
 }
 
 /// a b - c d for four lanes, each product and the difference in double, the
-/// result rounded to float: the fallback of intersect_watertight for an edge
-/// function that rounds to 0 in float, lane by lane, bit for bit (a product of
-/// two floats is exact in double, and the difference is rounded to double then
-/// to float in both).
+/// result rounded to float: what intersect_watertight computes for a triangle
+/// it may hit, lane by lane, bit for bit (a product of two floats is exact in
+/// double, and the difference is rounded to double then to float in both).
 inline __m128 edge_function4(const wide4& a, const wide4& b, const wide4& c, const wide4& d)
 {
 #if RT_BVH_AVX
@@ -199,8 +199,8 @@ inline __m128 max_abs3_sse(__m128 p, __m128 q, __m128 s)
 
 /// The watertight test of four triangles at once, one per lane: the same
 /// arithmetic as intersect_watertight and watertight_finish (translation,
-/// shear, edge functions in float with the double fallback of a lane where one
-/// is 0, the sign test, det, T, t, the range, the
+/// shear, certain misses rejected in float, the edge functions in double, the
+/// sign test, det, T, t, the range, the
 /// distance check of watertight_t_error and the barycentrics), operation for
 /// operation in the same order, so each lane computes the same bits and
 /// intersect_block_scalar gives the same result (tests/stage04_triangle.cpp
