@@ -54,6 +54,18 @@ class Tables(unittest.TestCase):
         # Embree's high-quality build 0.08 s, a quarter of rt's time
         self.assertIn("| cube | 0.020 (0.020) | 0.013 (0.013) | 0.011 (0.011) | 0.010 (0.010) | "
                       "**2.00** (2.00) | 1.10 (1.10) | 1.60x (1.60x) | 0.080 (0.080) | 0.25 (0.25) |", text)
+        # no set at 1.0 in either run; 1.90x and 2.00x both count as 1.9x or more
+        self.assertIn("Sets at 1.0 or more of Embree on one thread in both runs: 0 of 5; sets 1.9x or more faster "
+                      "on two threads than on one: 5 (5) of 5.", text)
+
+    def test_a_set_counts_as_ahead_only_when_both_runs_are_at_1_or_more(self):
+        write_run(self.tmp / "ahead", 1.0, 3.7)   # 1.85x on two threads
+        write_run(self.tmp / "near", 0.999, 4.0)  # shown as 1.00, not counted
+        text = embree_runs.tables(embree_runs.load(self.tmp / "ahead"), embree_runs.load(self.tmp / "ahead"))
+        self.assertIn("in both runs: 5 of 5; sets 1.9x or more faster on two threads than on one: 0 (0) of 5.", text)
+        text = embree_runs.tables(embree_runs.load(self.tmp / "ahead"), embree_runs.load(self.tmp / "near"))
+        self.assertIn("| cube | 1.00 (1.00) |", text)
+        self.assertIn("in both runs: 0 of 5; sets 1.9x or more faster on two threads than on one: 0 (5) of 5.", text)
 
     def test_the_marked_block_is_replaced_and_the_rest_kept(self):
         doc = self.tmp / "doc.md"
