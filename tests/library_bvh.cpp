@@ -30,6 +30,7 @@
 
 #include <rt/accelerator.hpp>
 #include <rt/bvh.hpp>
+#include <rt/bvh/hit_fill.hpp>
 #include <rt/obj_loader.hpp>
 #include <rt/offset.hpp>
 #include <rt/spawn.hpp>
@@ -645,6 +646,52 @@ TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last 
     rt::hit_record rec;
     REQUIRE(tree.closest_hit(rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
     CHECK(rec.primitive == 999);
+}
+
+TEST_CASE("a BVH hit's record filled from its block is fill_triangle_record's, field for field")
+{
+    // rt::detail::fill_triangle_record_strided (bvh/hit_fill.hpp) reads the
+    // corners from a leaf block (four values apart) and computes in SSE; its
+    // record must be the scalar fill_triangle_record's bit for bit: random
+    // triangles at scales 1e-3 to 1e3, both faces, two corners the same (no
+    // normal), barycentrics of hits and of negative zeros
+    std::mt19937 random(11);
+    std::uniform_real_distribution<real> unit(-1, 1), weight(0, 1);
+    const real scales[] = {real(1e-3), real(1), real(1e3)};
+    std::size_t records = 0, back_faces = 0, no_normal = 0, different = 0;
+    for (int round = 0; round < 3000; ++round) {
+        const real scale = scales[round % 3];
+        const auto point = [&] { return scale * vec3(unit(random), unit(random), unit(random)); };
+        const vec3 a = point(), b = point();
+        const vec3 c = round % 50 == 0 ? b : point(); // every 50th with two corners the same: no normal
+        rt::packed_primitive p{{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z}, 0};
+        const rt::packed_primitive* lanes[4] = {&p, &p, &p, &p};
+        const rt::triangle_block block = rt::pack_triangle_block(lanes, 4);
+        const int lane = round % 4;
+        real b1 = weight(random), b2 = weight(random) * (1 - b1);
+        if (round % 7 == 0)
+            b2 = real(-0.0);
+        const rt::triangle_hit h{scale * weight(random), 1 - b1 - b2, b1, b2};
+        const rt::ray r{point(), vec3(unit(random), unit(random), unit(random) + real(0.01))};
+        rt::hit_record expected, got;
+        rt::fill_triangle_record(a, b, c, block.n[lane], r, h, expected);
+        rt::detail::fill_triangle_record_strided(&block.v[0][lane], 4, block.n[lane], r, h, got);
+        ++records;
+        back_faces += expected.front_face ? 0 : 1;
+        no_normal += block.n[lane] == vec3(0) ? 1 : 0;
+        if (!same_hit(expected, got) && ++different <= 5) { // the first five in full
+            INFO("triangle " << a << " " << b << " " << c << ", barycentrics " << h.b0 << " " << h.b1 << " " << h.b2);
+            CHECK_MESSAGE(same_hit(expected, got), "expected point " << expected.point << " +- "
+                                                                     << expected.point_error << ", normal "
+                                                                     << expected.geometric_normal << "; found "
+                                                                     << got.point << " +- " << got.point_error
+                                                                     << ", normal " << got.geometric_normal);
+        }
+    }
+    MESSAGE(records << " records, " << back_faces << " back faces, " << no_normal << " without a normal");
+    CHECK(back_faces > 1000);
+    CHECK(no_normal >= 50);
+    CHECK(different == 0);
 }
 
 TEST_CASE("a block's closest lane is the one replaces() keeps: the smallest t, at an equal t the largest id")

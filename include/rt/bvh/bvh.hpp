@@ -22,6 +22,7 @@
 //   node_test.hpp       a ray against a node's boxes, all at once
 //   descend.hpp         the child a ray enters next, the others pushed
 //   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
+//   hit_fill.hpp        a hit's record from its block (SSE), for rt::accelerator
 //   bvh.hpp             this file: build, then closest() and any()
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
