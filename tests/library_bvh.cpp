@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -646,6 +647,57 @@ TEST_CASE("many copies of one triangle: the BVH still builds and keeps the last 
     rt::hit_record rec;
     REQUIRE(tree.closest_hit(rt::ray{{0, 0, 3}, {0, 0, -1}}, 0, rt::infinity, rec));
     CHECK(rec.primitive == 999);
+}
+
+TEST_CASE("a leaf block's normals are triangle_normal's, and zero for spheres and unused lanes")
+{
+    // pack_triangle_block computes its four normals at once where AVX is
+    // compiled in (detail::block_normals, bvh/layout.hpp; this suite's
+    // library.avx2 build), else lane by lane: either way each must be
+    // triangle_normal's, bit for bit. Random triangles at scales 1e-8 to 1e8,
+    // slivers, corners on one line, and blocks of one to four lanes with
+    // spheres among them
+    std::mt19937 random(17);
+    std::uniform_real_distribution<real> unit(-1, 1);
+    const real scales[] = {real(1e-8), real(1e-3), real(1), real(1e3), real(1e8)};
+    std::size_t normals = 0, zero = 0, different = 0;
+    for (int round = 0; round < 4000; ++round) {
+        rt::packed_primitive p[4];
+        const std::size_t n = std::size_t(1 + round % 4);
+        for (std::size_t lane = 0; lane < n; ++lane) {
+            const real scale = scales[(round + int(lane)) % 5];
+            const auto point = [&] { return scale * vec3(unit(random), unit(random), unit(random)); };
+            const vec3 a = point(), b = point();
+            vec3 c = point();
+            if (round % 10 == 1)
+                c = a + real(1e-4) * (c - a) + (b - a); // a sliver
+            if (round % 25 == 2)
+                c = b; // no area
+            p[lane] = rt::pack_triangle(a, b, c, std::uint32_t(lane));
+            if (round % 9 == 3 && lane == 1)
+                p[lane] = rt::pack_sphere(rt::sphere{a, scale, 0}, 1);
+        }
+        const rt::packed_primitive* lanes[4] = {&p[0], &p[1], &p[2], &p[3]};
+        const rt::triangle_block block = rt::pack_triangle_block(lanes, n);
+        for (std::size_t lane = 0; lane < 4; ++lane) {
+            vec3 expected(0);
+            if (lane < n && !(p[lane].id & rt::sphere_flag))
+                expected = rt::triangle_normal(vec3(p[lane].v[0], p[lane].v[1], p[lane].v[2]),
+                                               vec3(p[lane].v[3], p[lane].v[4], p[lane].v[5]),
+                                               vec3(p[lane].v[6], p[lane].v[7], p[lane].v[8]));
+            ++normals;
+            zero += expected == vec3(0) ? 1 : 0;
+            const vec3 got = block.n[lane];
+            const bool same = std::memcmp(&got, &expected, sizeof got) == 0;
+            if (!same && ++different <= 5) // the first five in full
+                CHECK_MESSAGE(same, "lane " << lane << " of " << n << ": expected the normal " << expected
+                                            << " (triangle_normal; zero for a sphere or an unused lane), found "
+                                            << got);
+        }
+    }
+    MESSAGE(normals << " lanes, " << zero << " without a normal");
+    CHECK(zero > 4000);
+    CHECK(different == 0);
 }
 
 TEST_CASE("a BVH hit's record filled from its block is fill_triangle_record's, field for field")

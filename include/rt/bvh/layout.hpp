@@ -31,7 +31,7 @@
 #include "../vec.hpp"
 #include "packed.hpp"
 
-#include "simd_begin.hpp" // RT_BVH_AVX2, until simd_end.hpp
+#include "simd_begin.hpp" // RT_BVH_AVX, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
 
 namespace rt {
 
@@ -56,6 +56,52 @@ struct alignas(32) triangle_block {
     vec3 n[4];
 };
 
+namespace detail {
+
+/// triangle_normal (triangle_shape.hpp) of the four lanes of `b` at once, in
+/// four lanes of double with AVX: the same operations in the same order, so
+/// the same bits (the tests compare the BVH's hit records, which read these
+/// normals, with the flat list's, which compute them), and the zero vector
+/// for a sphere's or an unused lane (NaN corners, as for corners on one
+/// line). A build computes one normal per triangle: one at a time, its
+/// square root and division were 5-7% of a one-thread build
+/// (docs/performance.md, experiment 6). Returns false where AVX is not there
+/// (the caller then calls triangle_normal lane by lane).
+inline bool block_normals(triangle_block& b)
+{
+#if RT_BVH_AVX
+    auto row = [&b](int j) { return _mm256_cvtps_pd(_mm_load_ps(b.v[j])); };
+    const __m256d ax = row(0), ay = row(1), az = row(2);
+    const __m256d e1x = _mm256_sub_pd(row(3), ax), e1y = _mm256_sub_pd(row(4), ay), e1z = _mm256_sub_pd(row(5), az);
+    const __m256d e2x = _mm256_sub_pd(row(6), ax), e2y = _mm256_sub_pd(row(7), ay), e2z = _mm256_sub_pd(row(8), az);
+    const __m256d nx = _mm256_sub_pd(_mm256_mul_pd(e1y, e2z), _mm256_mul_pd(e1z, e2y));
+    const __m256d ny = _mm256_sub_pd(_mm256_mul_pd(e1z, e2x), _mm256_mul_pd(e1x, e2z));
+    const __m256d nz = _mm256_sub_pd(_mm256_mul_pd(e1x, e2y), _mm256_mul_pd(e1y, e2x));
+    const __m256d magnitude = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+    const __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_and_pd(magnitude, nx), _mm256_and_pd(magnitude, ny)),
+                                      _mm256_and_pd(magnitude, nz));
+    // a normal where 0 < sum < infinity (false for NaN), else the zero vector
+    const __m256d has = _mm256_and_pd(_mm256_cmp_pd(sum, _mm256_setzero_pd(), _CMP_GT_OQ),
+                                      _mm256_cmp_pd(sum, _mm256_set1_pd(std::numeric_limits<double>::infinity()),
+                                                    _CMP_LT_OQ));
+    const __m256d squares =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(nx, nx), _mm256_mul_pd(ny, ny)), _mm256_mul_pd(nz, nz));
+    const __m256d inv_length = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_sqrt_pd(squares));
+    alignas(16) float x[4], y[4], z[4];
+    _mm_store_ps(x, _mm256_cvtpd_ps(_mm256_and_pd(has, _mm256_mul_pd(nx, inv_length))));
+    _mm_store_ps(y, _mm256_cvtpd_ps(_mm256_and_pd(has, _mm256_mul_pd(ny, inv_length))));
+    _mm_store_ps(z, _mm256_cvtpd_ps(_mm256_and_pd(has, _mm256_mul_pd(nz, inv_length))));
+    for (int lane = 0; lane < 4; ++lane)
+        b.n[lane] = vec3(x[lane], y[lane], z[lane]);
+    return true;
+#else
+    (void)b;
+    return false;
+#endif
+}
+
+} // namespace detail
+
 /// The block of the primitives *lanes[0 .. n), n <= 4.
 inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4], std::size_t n)
 {
@@ -72,6 +118,11 @@ inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4]
         b.id[lane] = p.id;
         for (int j = 0; j < ((p.id & sphere_flag) ? 4 : 9); ++j)
             b.v[j][lane] = p.v[j];
+    }
+    if (detail::block_normals(b))
+        return b;
+    for (std::size_t lane = 0; lane < n && lane < 4; ++lane) {
+        const packed_primitive& p = *lanes[lane];
         if (!(p.id & sphere_flag))
             b.n[lane] = triangle_normal(vec3(p.v[0], p.v[1], p.v[2]), vec3(p.v[3], p.v[4], p.v[5]),
                                         vec3(p.v[6], p.v[7], p.v[8]));
