@@ -4,6 +4,7 @@ marker lines (bench/plot.py and the *_runs.py scripts; standard
 library only)."""
 
 import argparse
+import re
 import csv
 import os
 import sys
@@ -51,7 +52,15 @@ def runs_main(argv, description, make_text, begin, end, wrote, runs=("first", "s
     for name in runs:
         parser.add_argument(name, help=f"the {name} run's --out folder")
     parser.add_argument("--doc", help="the document whose marked block to replace")
+    parser.add_argument("--block", help="the name in the block's marker lines, for a document that holds more "
+                        "than one such block (another machine's runs): <!-- NAME:begin --> and <!-- NAME:end -->; "
+                        "default: " + begin[len("<!-- "):-len(":begin -->")])
     args = parser.parse_args(argv)
+    if args.block is not None:
+        # a marker is an HTML comment: no "--" inside it
+        if not re.fullmatch(r"[A-Za-z0-9]+(-[A-Za-z0-9_]+)*", args.block):
+            parser.error(f"expected --block to be a name such as embree-runs-amd, found '{args.block}'")
+        begin, end = f"<!-- {args.block}:begin -->", f"<!-- {args.block}:end -->"
     folders = [getattr(args, name) for name in runs]
     text = make_text(*folders)
     if not args.doc:

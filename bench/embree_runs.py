@@ -12,6 +12,8 @@ issue 17's 1.0 and 1.9x, build times) are
 written between the lines <!-- embree-runs:begin --> and <!-- embree-runs:end -->
 of the document (atomically: a temporary file, then a rename), each figure of the
 first run followed by the second's in brackets. Without --doc they are printed.
+Another machine's runs go in a block of their own, named by --block (--block
+embree-runs-amd: between <!-- embree-runs-amd:begin --> and its end line).
 Python 3 standard library only.
 """
 

@@ -78,6 +78,27 @@ class Tables(unittest.TestCase):
         self.assertNotIn("old tables", text)
         self.assertFalse(Path(str(doc) + ".tmp").exists())
 
+    def test_a_second_machine_s_block_is_written_by_name_and_the_first_kept(self):
+        doc = self.tmp / "doc.md"
+        doc.write_text(f"{embree_runs.BEGIN}\nfirst machine\n{embree_runs.END}\n"
+                       "<!-- embree-runs-amd:begin -->\nold\n<!-- embree-runs-amd:end -->\n")
+        with contextlib.redirect_stdout(io.StringIO()):
+            embree_runs.main([str(self.tmp / "one"), str(self.tmp / "two"), "--doc", str(doc),
+                              "--block", "embree-runs-amd"])
+        text = doc.read_text()
+        self.assertIn(f"{embree_runs.BEGIN}\nfirst machine\n{embree_runs.END}\n", text)
+        self.assertIn("<!-- embree-runs-amd:begin -->\nMachine: a test machine.", text)
+        self.assertNotIn("\nold\n", text)
+
+    def test_a_block_name_that_cannot_sit_in_a_marker_is_refused(self):
+        doc = self.tmp / "doc.md"
+        doc.write_text(f"{embree_runs.BEGIN}\nkept\n{embree_runs.END}\n")
+        for name in ("a--b", "x -->", ""):
+            with contextlib.redirect_stderr(io.StringIO()) as err, self.assertRaises(SystemExit):
+                embree_runs.main([str(self.tmp / "one"), str(self.tmp / "two"), "--doc", str(doc), "--block", name])
+            self.assertIn("expected --block to be a name such as embree-runs-amd", err.getvalue())
+        self.assertEqual(doc.read_text(), f"{embree_runs.BEGIN}\nkept\n{embree_runs.END}\n")
+
     def test_a_document_without_the_markers_is_left_as_it_was(self):
         doc = self.tmp / "doc.md"
         doc.write_text("no markers here\n")
