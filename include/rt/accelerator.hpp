@@ -88,6 +88,8 @@ struct primitive_ref {
     std::uint32_t primitive = 0;
 };
 
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+
 /// The scene-level intersection: built once from a scene, then queried by
 /// every ray. The scene must outlive the accelerator and must not change while
 /// it is used. The queries are const and safe to call from many threads.
@@ -226,6 +228,8 @@ private:
     std::vector<packed_primitive> flat_;
     bvh tree_;
 };
+
+} // namespace RT_BVH_ABI
 
 } // namespace rt
 

@@ -29,6 +29,8 @@
 #include "thin_lens.hpp"
 #include "vec.hpp"
 
+#include "bvh/abi_begin.hpp" // RT_BVH_ABI, until bvh/simd_end.hpp
+
 namespace rt {
 
 /// A ray source for rt::render: film position in pixels -> ray.
@@ -56,6 +58,8 @@ inline ray lens_ray(const scene& s, const ray& pinhole, pcg32& random)
     return thin_lens_ray(pinhole, basis, s.lens.aperture, s.lens.focus, concentric_disk(xi1, xi2));
 }
 
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+
 /// An accelerator seen through a counter of the queries made with it, so a
 /// render reports its shadow and mirror rays as well as its camera rays. One
 /// sample's own counter: it is made per sample, never shared between threads.
@@ -74,6 +78,8 @@ struct counting_accelerator {
         return accel->any_hit(r, tmin, tmax);
     }
 };
+
+} // namespace RT_BVH_ABI
 
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
 /// `accel`: the shaded colour of stages 05-07 (rt::ray_color; rt::ray_color_glass,
@@ -141,3 +147,5 @@ inline radiance_function make_radiance(const scene& s, aov_kind aov)
 }
 
 } // namespace rt
+
+#include "bvh/simd_end.hpp"

@@ -30,9 +30,15 @@
 #include <rt/scene.hpp>
 #include <rt/vec.hpp>
 
+// rt::accelerator lives in the inline namespace of this unit's fast path
+// (rt/bvh/abi_begin.hpp: no intrinsics, so this header stays light)
+#include <rt/bvh/abi_begin.hpp>
 namespace rt {
+inline namespace RT_BVH_ABI {
 class accelerator;
 }
+} // namespace rt
+#include <rt/bvh/simd_end.hpp>
 
 namespace stage {
 

@@ -67,7 +67,10 @@
 #include "parallel_fill.hpp"
 #include "wide_collapse.hpp"
 
+#include "abi_begin.hpp" // RT_BVH_ABI, until simd_end.hpp
+
 namespace rt {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// A BVH over packed primitives (see the top of this file). Built once; its
 /// queries are const and safe to run from many threads at once.
@@ -345,4 +348,7 @@ private:
     bvh_stats stats_;
 };
 
+} // namespace RT_BVH_ABI
 } // namespace rt
+
+#include "simd_end.hpp"

@@ -25,6 +25,7 @@
 
 namespace rt {
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The children waiting during a traversal and the distances where the ray
 /// enters them, as three arrays, so the 8-wide descent writes each with one
@@ -302,6 +303,7 @@ RT_BVH_INLINE void descend(int mask, const bvh_node& node, const real tnear[], S
 #endif
 }
 
+} // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
 

@@ -24,6 +24,7 @@
 
 namespace rt {
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 #if RT_BVH_SSE
 /// v[0], v[k], v[2 k] in lanes x, y, z (0 in the fourth).
@@ -81,6 +82,7 @@ RT_BVH_INLINE void fill_triangle_record_strided(const real* v, int k, const vec3
 #endif
 }
 
+} // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
 

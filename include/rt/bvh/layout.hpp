@@ -34,6 +34,7 @@
 #include "simd_begin.hpp" // RT_BVH_AVX, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
 
 namespace rt {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// Children per node: 8 where AVX2 is there (RT_BVH_AVX2), else 4.
 constexpr int bvh_width = RT_BVH_AVX2 ? 8 : 4;
@@ -56,7 +57,10 @@ struct alignas(32) triangle_block {
     vec3 n[4];
 };
 
+} // namespace RT_BVH_ABI
+
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// triangle_normal (triangle_shape.hpp) of the four lanes of `b` at once, in
 /// four lanes of double with AVX: the same operations in the same order, so
@@ -100,7 +104,10 @@ inline bool block_normals(triangle_block& b)
 #endif
 }
 
+} // namespace RT_BVH_ABI
 } // namespace detail
+
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The block of the primitives *lanes[0 .. n), n <= 4.
 inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4], std::size_t n)
@@ -152,6 +159,7 @@ struct alignas(64) bvh_node {
 /// Set in bvh_node::child for a leaf.
 constexpr std::uint32_t leaf_flag = 0x80000000u;
 
+} // namespace RT_BVH_ABI
 } // namespace rt
 
 #include "simd_end.hpp"

@@ -24,6 +24,7 @@
 
 namespace rt {
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The ray as the SIMD leaf test reads it, besides the watertight ray itself:
 /// the origin and the shear in all four lanes.
@@ -325,6 +326,7 @@ RT_BVH_INLINE int intersect_block(const triangle_block& b, const leaf_ray& r, co
 #endif
 }
 
+} // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
 

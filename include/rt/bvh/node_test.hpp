@@ -19,6 +19,7 @@
 
 namespace rt {
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 #if RT_BVH_SSE
 constexpr bool bvh_uses_sse = true;
@@ -139,6 +140,7 @@ inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin
 #endif
 }
 
+} // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
 

@@ -11,8 +11,11 @@
 #include "layout.hpp"
 #include "parallel_fill.hpp"
 
+#include "abi_begin.hpp" // RT_BVH_ABI, until simd_end.hpp
+
 namespace rt {
 namespace detail {
+inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// Turns the binary tree into bvh_width-wide nodes (wide BVHs for single rays:
 /// Wald, Benthin, Boulos, "Getting Rid of Packets", IEEE Symposium on
@@ -82,5 +85,8 @@ private:
     bvh_stats& stats_;
 };
 
+} // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
+
+#include "simd_end.hpp"
