@@ -4,9 +4,9 @@ marker lines (bench/plot.py and the *_runs.py scripts; standard
 library only)."""
 
 import argparse
-import re
 import csv
 import os
+import re
 import sys
 
 

@@ -3,7 +3,7 @@
 // SSE on x86-64), tests/mixed_targets_unit.cpp with -mavx2 (8-wide nodes),
 // as a program that includes rt's headers may mix them. The fast path's
 // width-dependent types and functions live in an inline namespace named after
-// the width (bvh/simd_begin.hpp, RT_BVH_ABI), so each unit gets its own: one
+// the width (bvh/abi_begin.hpp, RT_BVH_ABI), so each unit gets its own: one
 // name for two layouts would break the one-definition rule, and the linker,
 // keeping one copy of each inline function, could pair one unit's build with
 // the other's traversal. No exercise is called.
@@ -14,31 +14,7 @@
 #include <limits>
 #include <random>
 #include <type_traits>
-#include <typeinfo>
 #include <vector>
-
-#include <rt/accelerator.hpp>
-
-namespace {
-
-rt_test::unit_trace trace_in_this_unit(const rt::scene& s, const std::vector<rt::ray>& rays)
-{
-    rt_test::unit_trace out;
-    out.width = rt::bvh_width;
-    out.node_type = typeid(rt::bvh_node).name();
-    out.accelerator_type = typeid(rt::accelerator).name();
-    const rt::accelerator accel(s, rt::accelerator_kind::bvh);
-    for (const rt::ray& r : rays) {
-        rt::hit_record rec;
-        const bool hit = accel.closest_hit(r, 0, std::numeric_limits<float>::infinity(), rec);
-        out.t.push_back(hit ? float(rec.t) : std::numeric_limits<float>::infinity());
-        out.primitive.push_back(hit ? rec.primitive : 0u);
-        out.blocked.push_back(accel.any_hit(r, 0, rt::real(1e30)));
-    }
-    return out;
-}
-
-} // namespace
 
 TEST_CASE("units compiled for different targets each get their own BVH types, and the same hits")
 {
@@ -52,7 +28,7 @@ TEST_CASE("units compiled for different targets each get their own BVH types, an
     std::mt19937 random(23);
     const rt::scene s = rt_test::random_scene(random, 300, 3000, true);
     const std::vector<rt::ray> rays = rt_test::random_rays(random, 4000);
-    const rt_test::unit_trace here = trace_in_this_unit(s, rays);
+    const rt_test::unit_trace here = rt_test::trace_in_this_unit(s, rays);
     const rt_test::unit_trace there = rt_test::trace_in_second_unit(s, rays);
     INFO("this unit: width " << here.width << ", node type " << here.node_type << "; the -mavx2 unit: width "
                              << there.width << ", node type " << there.node_type);
@@ -62,7 +38,6 @@ TEST_CASE("units compiled for different targets each get their own BVH types, an
     CHECK_MESSAGE(here.accelerator_type != there.accelerator_type,
                   "expected rt::accelerator, which holds the tree, to be a type of its own in each unit");
     // the answers: equal ray by ray (the BVH's hits do not depend on its width)
-    const rt::accelerator flat(s, rt::accelerator_kind::flat);
     std::size_t differ = 0, hits = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
         hits += here.t[i] < std::numeric_limits<float>::infinity() ? 1 : 0;

@@ -7,9 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
+#include <rt/accelerator.hpp>
 #include <rt/ray.hpp>
 #include <rt/scene.hpp>
 
@@ -25,7 +28,30 @@ struct unit_trace {
     std::vector<bool> blocked; ///< each ray's any_hit in [0, 1e30]
 };
 
-/// The rays through `s`, traced by an accelerator this unit builds (kind bvh).
+/// The rays through `s`, traced by an accelerator the calling unit builds
+/// (kind bvh), as that unit is compiled. Internal linkage on purpose: each
+/// unit keeps its own copy, where an inline function would be one definition
+/// the linker picks for both.
+namespace {
+[[maybe_unused]] unit_trace trace_in_this_unit(const rt::scene& s, const std::vector<rt::ray>& rays)
+{
+    unit_trace out;
+    out.width = rt::bvh_width;
+    out.node_type = typeid(rt::bvh_node).name();
+    out.accelerator_type = typeid(rt::accelerator).name();
+    const rt::accelerator accel(s, rt::accelerator_kind::bvh);
+    for (const rt::ray& r : rays) {
+        rt::hit_record rec;
+        const bool hit = accel.closest_hit(r, 0, std::numeric_limits<float>::infinity(), rec);
+        out.t.push_back(hit ? float(rec.t) : std::numeric_limits<float>::infinity());
+        out.primitive.push_back(hit ? rec.primitive : 0u);
+        out.blocked.push_back(accel.any_hit(r, 0, rt::real(1e30)));
+    }
+    return out;
+}
+} // namespace
+
+/// trace_in_this_unit as the second unit (mixed_targets_unit.cpp) compiles it.
 unit_trace trace_in_second_unit(const rt::scene& s, const std::vector<rt::ray>& rays);
 
 } // namespace rt_test
