@@ -12,17 +12,25 @@ function(rt_require package target apt brew vcpkg)
   endif()
 endfunction()
 
-find_package(glm CONFIG QUIET)
+include(RtHostHeaders) # cross builds and libc++ (RT_HOST_HEADERS, RT_TINYOBJLOADER_FROM_HEADER)
+
+if(NOT TARGET glm::glm)
+  find_package(glm CONFIG QUIET)
+endif()
 rt_require(GLM glm::glm libglm-dev glm glm)
 
 # Debian's tinyobjloader reports its version as "2rc10": ask for no version.
-find_package(tinyobjloader CONFIG QUIET)
+if(NOT TARGET tinyobjloader::tinyobjloader)
+  find_package(tinyobjloader CONFIG QUIET)
+endif()
 rt_require(tinyobjloader tinyobjloader::tinyobjloader libtinyobjloader-dev tinyobjloader tinyobjloader)
 
 set(THREADS_PREFER_PTHREAD_FLAG ON)
 find_package(Threads REQUIRED)
 
 if(RT_BUILD_TESTS)
-  find_package(doctest CONFIG QUIET)
+  if(NOT TARGET doctest::doctest)
+    find_package(doctest CONFIG QUIET)
+  endif()
   rt_require(doctest doctest::doctest doctest-dev doctest doctest)
 endif()

@@ -4,7 +4,8 @@
 # containing its words, and every file of the folder untouched.
 #
 #   cmake -DPROGRAM=<stage02_generate_rays> -DCATALOGUE=<tests/bad_inputs>
-#         -DWORK=<scratch folder> -DCASE=<case> -P bad_input_case.cmake
+#         -DWORK=<scratch folder> -DCASE=<case> [-DEMULATOR=<wine>] -P bad_input_case.cmake
+# EMULATOR runs a cross-built program (CMAKE_CROSSCOMPILING_EMULATOR: Wine, qemu).
 cmake_minimum_required(VERSION 3.21)
 
 foreach(variable IN ITEMS PROGRAM CATALOGUE WORK CASE)
@@ -96,7 +97,7 @@ endfunction()
 snapshot("${folder}" before)
 
 # --- run it ------------------------------------------------------------------
-execute_process(COMMAND "${PROGRAM}" ${arguments}
+execute_process(COMMAND ${EMULATOR} "${PROGRAM}" ${arguments}
                 WORKING_DIRECTORY "${folder}"
                 RESULT_VARIABLE exit_code OUTPUT_VARIABLE out ERROR_VARIABLE err
                 TIMEOUT 60)
