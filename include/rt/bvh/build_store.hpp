@@ -32,6 +32,7 @@
 
 #include "../error.hpp"
 #include "build_options.hpp"
+#include "builtins.hpp"
 #include "parallel_fill.hpp"
 
 namespace rt {
@@ -81,14 +82,7 @@ private:
     static int segment_of(std::uint32_t r)
     {
         const std::uint32_t x = r + 1;
-#if defined(__GNUC__) || defined(__clang__)
-        return 31 - __builtin_clz(x);
-#else
-        int s = 0;
-        while ((x >> (s + 1)) != 0)
-            ++s;
-        return s;
-#endif
+        return highest_bit(x);
     }
 
     binary_node& at(std::uint32_t i) const

@@ -12,6 +12,7 @@
 //   layout.hpp          wide nodes (8 children with AVX2, else 4), leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
+//   builtins.hpp        the compiler's bit scan and prefetch, one name each
 //   build_store.hpp     its nodes and references, written by all the build's threads
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
@@ -59,6 +60,7 @@
 #include "build_tasks.hpp"
 #include "build_options.hpp"
 #include "build_store.hpp"
+#include "builtins.hpp"
 #include "descend.hpp"
 #include "layout.hpp"
 #include "leaf_test.hpp"
@@ -235,11 +237,9 @@ private:
                     // the primitives are read in leaf order, scattered over
                     // prims: ask for those of a leaf 8 ahead (bunny-loop2's
                     // blocks: 88 ms to 63 ms on one thread)
-#if defined(__GNUC__) || defined(__clang__)
                     if (l + 8 < end)
                         for (std::uint32_t k = 0; k < leaves[l + 8].count && k < 8; ++k)
-                            __builtin_prefetch(&prims[items[leaves[l + 8].first_item + k].index]);
-#endif
+                            detail::prefetch(&prims[items[leaves[l + 8].first_item + k].index]);
                     const leaf_blocks& leaf = leaves[l];
                     for (std::uint32_t done = 0; done < leaf.count; done += 4) {
                         const packed_primitive* lanes[4] = {};

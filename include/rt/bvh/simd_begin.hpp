@@ -25,6 +25,8 @@
 #if !defined(RT_BVH_INLINE)
 #if defined(__GNUC__) || defined(__clang__)
 #define RT_BVH_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define RT_BVH_INLINE __forceinline
 #else
 #define RT_BVH_INLINE inline
 #endif
