@@ -27,6 +27,7 @@
 #include <vector>
 
 #include <rt/atomic_file.hpp>
+#include <rt/decimal_text.hpp>
 #include <rt/encoding.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
@@ -738,10 +739,10 @@ TEST_CASE("camera statement numbers: the shortest text when it reads back exactl
     // the text must survive that path exactly, whatever rt::real is.
     auto read_back = [](const std::string& text) {
         double parsed = 0;
-        const auto [end, status] = std::from_chars(text.data(), text.data() + text.size(), parsed);
-        if (status != std::errc() || end != text.data() + text.size())
+        if (rt::detail::read_decimal<rt::real>(text.data(), text.data() + text.size(), parsed) !=
+            rt::detail::decimal_reading::number)
             return std::numeric_limits<rt::real>::quiet_NaN(); // equal to nothing
-        return rt::real(parsed);
+        return rt::real(rt::detail::rounded_to<rt::real>(parsed));
     };
     // the stream's default 6 digits lose the camera: 1/3 comes back as 0.333333
     std::ostringstream six_digits;

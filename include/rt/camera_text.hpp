@@ -11,21 +11,22 @@
 
 #include "camera_model.hpp"
 #include "config.hpp"
+#include "decimal_text.hpp"
 #include "vec.hpp"
 
 namespace rt {
 
 /// `value` as the shortest text that the scene loader and the command-line
-/// options (which read a double and round it to rt::real) turn back into
-/// exactly `value`; the 17 digits of the double otherwise, which always come
-/// back exactly.
+/// options (which read it as decimal_text.hpp does, to the rt::real nearest
+/// the text) turn back into exactly `value`; the 17 digits of the double
+/// otherwise, which always come back exactly.
 inline std::string exact_number_text(real value)
 {
     char buffer[64];
     auto read_back = [](const char* first, const char* last) {
         double parsed = 0;
-        std::from_chars(first, last, parsed);
-        return real(parsed);
+        detail::read_decimal<real>(first, last, parsed);
+        return real(detail::rounded_to<real>(parsed));
     };
     const std::to_chars_result shortest = std::to_chars(buffer, buffer + sizeof buffer, value);
     if (shortest.ec == std::errc() && read_back(buffer, shortest.ptr) == value)

@@ -20,16 +20,15 @@
 #pragma once
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 #include <sstream>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "config.hpp"
+#include "decimal_text.hpp"
 #include "error.hpp"
 #include "text_file.hpp"
 
@@ -55,47 +54,25 @@ namespace detail {
 /// Why a word is not a number rt can store, or `fits`.
 enum class number_reading { fits, not_a_number, not_finite, too_large };
 
-/// Reads [first, last) as one decimal number (a leading '+' allowed) into
-/// `value`. A magnitude beyond `largest` (or beyond double) is too_large; one
-/// below the smallest double is 0, as it is at any precision.
+/// Reads [first, last) as one decimal number (decimal_text.hpp: a leading
+/// '+' allowed, nothing else skipped, whatever the locale) into `value`: the
+/// rt::real nearest the text (as a double), or beyond rt::real's range the
+/// double nearest it. A magnitude beyond `largest` (or beyond double) is
+/// too_large; one below the smallest double is 0, as it is at any precision.
 inline number_reading read_number(const char* first, const char* last, double largest, double& value)
 {
-    if (first != last && *first == '+')
-        ++first;
-    value = 0;
-    const auto [end, status] = std::from_chars(first, last, value);
-    if (end != last || (status != std::errc() && status != std::errc::result_out_of_range))
-        return number_reading::not_a_number;
-    if (status == std::errc())
-        return !std::isfinite(value) ? number_reading::not_finite
-               : std::fabs(value) > largest ? number_reading::too_large : number_reading::fits;
-    // out of double's range one way or the other: the decimal exponent of the
-    // first significant digit says which (d.ddd x 10^magnitude)
-    long digits = 0, zeros = 0, exponent = 0;
-    bool point = false, significant = false;
-    const char* p = first != last && *first == '-' ? first + 1 : first;
-    for (; p != last && ((*p >= '0' && *p <= '9') || *p == '.'); ++p) {
-        if (*p == '.') {
-            point = true;
-        } else if (!point) {
-            significant = significant || *p != '0';
-            digits += significant ? 1 : 0;
-        } else if (!significant) {
-            significant = *p != '0';
-            zeros += significant ? 0 : 1;
-        }
+    switch (read_decimal<real>(first, last, value)) {
+    case decimal_reading::number:
+        value = rounded_to<real>(value);
+        return std::fabs(value) > largest ? number_reading::too_large : number_reading::fits;
+    case decimal_reading::not_finite:
+        return number_reading::not_finite;
+    case decimal_reading::too_large:
+        return number_reading::too_large;
+    case decimal_reading::not_a_number:
+        break;
     }
-    if (p != last && (*p == 'e' || *p == 'E')) {
-        ++p;
-        const bool negative = p != last && *p == '-';
-        if (p != last && (*p == '+' || *p == '-'))
-            ++p;
-        for (; p != last; ++p)
-            exponent = std::min(exponent * 10 + (*p - '0'), 100000L);
-        exponent = negative ? -exponent : exponent;
-    }
-    const long magnitude = (digits > 0 ? digits - 1 : -(zeros + 1)) + exponent;
-    return magnitude > 0 ? number_reading::too_large : number_reading::fits;
+    return number_reading::not_a_number;
 }
 
 /// What a reader says of a word that is not a number it can store: the
@@ -179,7 +156,8 @@ public:
     }
 
     /// A finite number of magnitude at most `largest` (rt::real's largest by
-    /// default), read at double precision; `move_on` false: only looks at it.
+    /// default), the rt::real nearest the text (read_number); `move_on`
+    /// false: only looks at it.
     real number(const std::string& what, bool move_on = true,
                 double largest = double(std::numeric_limits<real>::max()))
     {

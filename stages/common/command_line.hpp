@@ -24,7 +24,6 @@
 // the usage. Nothing here knows rt's scenes: only rt::error.
 #pragma once
 
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -35,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include <rt/config.hpp>
+#include <rt/decimal_text.hpp>
 #include <rt/error.hpp>
 
 namespace stage {
@@ -119,19 +120,18 @@ inline std::uint64_t parse_seed(const std::string& option, const std::string& te
     return value;
 }
 
-/// A finite number in [lo, hi] (lo excluded when `open_below`).
+/// A finite number in [lo, hi] (lo excluded when `open_below`), written as
+/// in a scene file and read as the scene loader reads it (rt/decimal_text.hpp:
+/// the same in every locale, no blanks, no hexadecimal; the rt::real nearest
+/// the text, so that rt::exact_number_text's text comes back exactly).
 inline double parse_number(const std::string& option, const std::string& text, double lo, double hi,
                            bool open_below = false)
 {
-    std::size_t used = 0;
     double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
+    const bool read = rt::detail::read_decimal<rt::real>(text.data(), text.data() + text.size(), value) ==
+                      rt::detail::decimal_reading::number;
     const bool low_ok = open_below ? value > lo : value >= lo;
-    if (used == 0 || used != text.size() || !std::isfinite(value) || !low_ok || value > hi)
+    if (!read || !low_ok || value > hi)
         throw option_error(option, std::string("a number in ") + (open_below ? "(" : "[") + number_text(lo) + ", " +
                                        number_text(hi) + "]",
                            text);

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include <rt/decimal_text.hpp>
 #include <rt/error.hpp>
 
 namespace viewer {
@@ -30,7 +31,13 @@ struct script_command {
     std::string name;
     std::vector<std::string> arguments;
     rt::source_location where;  ///< of the command's name
-    double number(std::size_t k) const { return std::stod(arguments[k]); }
+    /// Argument k, a number (parse_script checked it)
+    double number(std::size_t k) const
+    {
+        double value = 0;
+        rt::detail::read_decimal<double>(arguments[k].data(), arguments[k].data() + arguments[k].size(), value);
+        return value;
+    }
 };
 
 namespace detail {
@@ -64,19 +71,21 @@ inline const char* script_signature(const std::string& name)
 
 inline bool is_number(const std::string& text, bool whole)
 {
+    if (!whole) {
+        // as a scene file's numbers are read (rt/decimal_text.hpp): the same in
+        // every locale, no blanks, no hexadecimal
+        double value = 0;
+        return rt::detail::read_decimal<double>(text.data(), text.data() + text.size(), value) ==
+                   rt::detail::decimal_reading::number &&
+               value > -1e6 && value < 1e6;
+    }
     if (text.empty())
         return false;
     std::size_t used = 0;
     try {
-        if (whole) {
-            const long long value = std::stoll(text, &used);
-            if (value < 0 || value > 1000000)
-                return false;
-        } else {
-            const double value = std::stod(text, &used);
-            if (!(value > -1e6 && value < 1e6))
-                return false;
-        }
+        const long long value = std::stoll(text, &used);
+        if (value < 0 || value > 1000000)
+            return false;
     } catch (const std::exception&) {
         return false;
     }
