@@ -1,58 +1,55 @@
 // atomic_file.hpp - write a file completely or not at all.
 //
 // Every output rt writes goes to a temporary file in the same folder first and
-// is renamed over the target only when it is complete. A rename within one
-// folder is atomic on POSIX file systems (rename(2), IEEE Std 1003.1-2017), so a
-// reader sees either the old file or the new one, and a failure (a full disk, a
-// crash, an exception while encoding) leaves the previous file untouched.
+// is renamed over the target only when it is complete and on the disk. A
+// rename within one folder is atomic on POSIX file systems (rename(2), IEEE Std
+// 1003.1-2017), so a reader sees either the old file or the new one, and a
+// failure (a full disk, a crash, an exception while encoding) leaves the
+// previous file untouched. On Windows the rename is MoveFileExW (platform.hpp
+// says which guarantees Microsoft documents; docs/reliability.md what that
+// means for a write there).
 //
 // What is promised (docs/reliability.md):
 //  - no temporary file is left behind: on an exception, on a write error, and
 //    when the program is stopped by SIGINT, SIGTERM or SIGHUP (a handler removes
 //    the temporary files being written, then dies of the signal as it would
-//    have); SIGXFSZ (the file size limit, ulimit -f) is ignored so that the
-//    write fails with EFBIG and is reported as an error;
+//    have) or on Windows by Ctrl+C, Ctrl+Break or its console closing; SIGXFSZ
+//    (the file size limit, ulimit -f) is ignored so that the write fails with
+//    EFBIG and is reported as an error;
+//  - the new file's bytes are on the disk (fsync, FlushFileBuffers) before
+//    the rename, so a power cut leaves the old file or the complete new one;
 //  - write_all_atomically writes several files all or none: every temporary
 //    file is complete before the first rename.
-// The handlers are installed by each write, and only over the default action:
-// a program that handles or ignores these signals itself keeps its way.
+// The POSIX handlers are installed by each write, and only over the default
+// action: a program that handles or ignores these signals itself keeps its way.
 #pragma once
 
-#include <atomic>
-#include <cerrno>
-#include <csignal>
 #include <cstddef>
-#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <ostream>
-#include <random>
 #include <streambuf>
 #include <string>
-#include <system_error>
 #include <utility>
 #include <vector>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include "error.hpp"
 #include "os_error.hpp"
+#include "path_text.hpp"
+#include "platform.hpp"
 #include "temporary_file.hpp"
 
 namespace rt {
 
 namespace detail {
 
-/// A std::streambuf writing to a POSIX file descriptor that keeps the errno of
-/// the first failed write, so the message can say why (ENOSPC, EFBIG, EIO).
-class descriptor_buffer : public std::streambuf {
+/// A std::streambuf writing to a new_file that keeps the error of the first
+/// failed write, so the message can say why (ENOSPC, EFBIG, EIO).
+class file_buffer : public std::streambuf {
 public:
-    explicit descriptor_buffer(int fd) : fd_(fd), buffer_(std::size_t(1) << 16)
+    explicit file_buffer(new_file& file) : file_(file), buffer_(std::size_t(1) << 16)
     {
         setp(buffer_.data(), buffer_.data() + buffer_.size());
     }
@@ -92,23 +89,12 @@ private:
     }
     bool write_all(const char* data, std::size_t count)
     {
-        if (failure_ != 0)
-            return false;
-        while (count > 0) {
-            const ssize_t written = ::write(fd_, data, count);
-            if (written < 0) {
-                if (errno == EINTR)
-                    continue;
-                failure_ = errno;
-                return false;
-            }
-            data += written;
-            count -= std::size_t(written);
-        }
-        return true;
+        if (failure_ == 0 && count > 0)
+            failure_ = file_.write(data, count);
+        return failure_ == 0;
     }
 
-    int fd_;
+    new_file& file_;
     std::vector<char> buffer_;
     int failure_ = 0;
 };
@@ -121,35 +107,35 @@ public:
     {
     }
 
-    /// Creates the temporary file and fills it with `write`; throws rt::error
-    /// with the reason (errno) when a byte could not be written.
+    /// Creates the temporary file, fills it with `write` and puts it on the
+    /// disk; throws rt::error with the reason (errno) when a byte could not be
+    /// written.
     void fill(const std::function<void(std::ostream&)>& write)
     {
-        const int fd = create_new_file(temporary_.path());
-        if (fd < 0) {
-            const int code = errno;
-            throw error(source_location{target_.string()},
+        new_file file; // closed before the temporary file is removed, on every path out
+        const int code = file.create(temporary_.path());
+        if (code != 0)
+            throw error(source_location{utf8_text(target_)},
                         "expected to create a temporary file beside it, found that impossible (" + reason_of(code) +
                             "); choose another output path");
-        }
         temporary_.created();
         int failure = 0;
-        try {
-            descriptor_buffer buffer(fd);
+        {
+            file_buffer buffer(file);
             std::ostream out(&buffer);
             write(out);
             out.flush();
             failure = buffer.failure();
             if (failure == 0 && !out)
                 failure = EIO;
-        } catch (...) {
-            ::close(fd);
-            throw;
         }
-        if (::close(fd) != 0 && failure == 0)
-            failure = errno; // NFS reports a full disk at close
+        if (failure == 0)
+            failure = file.sync();
+        const int closed = file.close(); // NFS reports a full disk at close
+        if (failure == 0)
+            failure = closed;
         if (failure != 0)
-            throw error(source_location{target_.string()},
+            throw error(source_location{utf8_text(target_)},
                         "expected to write the file, found a write error (" + reason_of(failure) +
                             "); nothing was written, the previous file, if any, is unchanged");
     }
@@ -157,11 +143,10 @@ public:
     /// Renames the temporary file over the target; throws rt::error on failure.
     void commit()
     {
-        if (::rename(temporary_.path().c_str(), target_.c_str()) != 0) {
-            const int code = errno;
-            throw error(source_location{target_.string()},
+        const int code = replace_file(temporary_.path(), target_);
+        if (code != 0)
+            throw error(source_location{utf8_text(target_)},
                         "expected to replace the file, found that impossible (" + reason_of(code) + ")");
-        }
         temporary_.release();
     }
 
@@ -180,35 +165,31 @@ private:
 /// bad output path fails at once instead of at the end.
 inline void check_writable(const std::filesystem::path& target)
 {
-    const source_location at{target.string()};
+    const source_location at{detail::utf8_text(target)};
     const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
-    const std::string shown_folder = "'" + shown_path(folder.string()) + "'";
-    struct stat status {};
-    if (::stat(folder.c_str(), &status) != 0) {
-        const int code = errno;
-        if (code == ENOENT)
-            throw error(at, "expected an existing output folder, found none at " + shown_folder + "; create it first");
+    const std::string shown_folder = "'" + shown_path(detail::utf8_text(folder)) + "'";
+    const detail::file_status folder_status = detail::status_of(folder);
+    if (folder_status.error == ENOENT)
+        throw error(at, "expected an existing output folder, found none at " + shown_folder + "; create it first");
+    if (folder_status.error != 0)
         throw error(at, "expected an existing output folder, found " + shown_folder + " cannot be reached (" +
-                            reason_of(code) + "); choose another output path");
-    }
-    if (!S_ISDIR(status.st_mode))
+                            reason_of(folder_status.error) + "); choose another output path");
+    if (!folder_status.folder)
         throw error(at, "expected an output folder, found " + shown_folder + " is a file; choose another output path");
-    const std::size_t name_bytes = target.filename().string().size();
+    const std::size_t name_length = detail::path_length(target.filename());
     const std::size_t longest = name_max(folder);
-    if (name_bytes > longest)
-        throw error(at, "expected a file name of at most " + std::to_string(longest) + " bytes, found one of " +
-                            std::to_string(name_bytes) + "; choose a shorter name");
-    if (::stat(target.c_str(), &status) == 0 && S_ISDIR(status.st_mode))
+    if (name_length > longest)
+        throw error(at, "expected a file name of at most " + std::to_string(longest) + " " + detail::length_unit +
+                            ", found one of " + std::to_string(name_length) + "; choose a shorter name");
+    if (detail::status_of(target).folder)
         throw error(at, "expected an output file, found a folder; give a file name such as out.png");
     detail::registered_temporary probe(detail::temporary_sibling(target));
-    const int fd = detail::create_new_file(probe.path());
-    if (fd < 0) {
-        const int code = errno;
+    detail::new_file probe_file;
+    const int code = probe_file.create(probe.path());
+    if (code != 0)
         throw error(at, "expected a writable output folder, found " + shown_folder + " not writable (" +
                             reason_of(code) + "); choose another output path");
-    }
     probe.created();
-    ::close(fd);
 }
 
 /// Throws rt::error when `target` is the same file as one of `inputs`, however
@@ -222,8 +203,8 @@ inline void check_not_input(const std::filesystem::path& target, const std::vect
         return; // a new file cannot be one of the inputs, which exist
     for (const std::filesystem::path& input : inputs)
         if (std::filesystem::equivalent(target, input, ec))
-            throw error(source_location{target.string()},
-                        "expected an output path different from the input '" + shown_path(input.string()) +
+            throw error(source_location{detail::utf8_text(target)},
+                        "expected an output path different from the input '" + shown_path(detail::utf8_text(input)) +
                             "', found the same file; writing it would destroy the input, so choose another -o");
 }
 
@@ -271,10 +252,8 @@ inline void write_all_atomically(const std::vector<output_file>& outputs)
         files.back()->fill(output.write);
     }
     std::vector<bool> existed;
-    for (const output_file& output : outputs) {
-        struct stat status {};
-        existed.push_back(::lstat(output.target.c_str(), &status) == 0);
-    }
+    for (const output_file& output : outputs)
+        existed.push_back(detail::entry_exists(output.target));
     for (std::size_t k = 0; k < files.size(); ++k) {
         try {
             files[k]->commit();
@@ -282,9 +261,9 @@ inline void write_all_atomically(const std::vector<output_file>& outputs)
             std::string replaced;
             for (std::size_t j = 0; j < k; ++j) {
                 if (!existed[j])
-                    ::unlink(files[j]->target().c_str());
+                    detail::remove_file(files[j]->target());
                 else
-                    replaced += (replaced.empty() ? "" : ", ") + shown_path(files[j]->target().string());
+                    replaced += (replaced.empty() ? "" : ", ") + shown_path(detail::utf8_text(files[j]->target()));
             }
             throw error(std::string(e.what()) + (replaced.empty() ? "; no other output was written"
                                                                   : "; already replaced: " + replaced));

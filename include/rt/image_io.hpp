@@ -28,6 +28,7 @@
 #include "byte_level.hpp"
 #include "error.hpp"
 #include "image.hpp"
+#include "path_text.hpp"
 
 namespace rt {
 
@@ -145,11 +146,11 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
 /// The lower-case extension of `path` (".png", ".ppm" or ".pfm"), or an error naming the formats.
 inline std::string image_format_of(const std::filesystem::path& path)
 {
-    std::string extension = path.extension().string();
+    std::string extension = detail::utf8_text(path.extension());
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     if (extension != ".ppm" && extension != ".pfm" && extension != ".png")
-        throw error(source_location{path.string()},
+        throw error(source_location{detail::utf8_text(path)},
                     "expected an image extension .png, .ppm or .pfm, found '" + extension +
                         "'; name the output file with one of them");
     return extension;

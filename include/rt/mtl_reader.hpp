@@ -26,6 +26,7 @@
 #include "error.hpp"
 #include "material.hpp"
 #include "obj_line.hpp"
+#include "path_text.hpp"
 #include "text_line.hpp"
 
 namespace rt {
@@ -44,7 +45,7 @@ struct mtl_entry {
 inline void read_mtl(const std::filesystem::path& path, const source_location& named_at, std::uintmax_t max_bytes,
                      std::vector<mtl_entry>& entries)
 {
-    const std::string name = path.string();
+    const std::string name = utf8_text(path);
     const std::string text = read_text(path, "the material library", max_bytes, named_at);
     for_each_line<obj_line>(text, name, [&](obj_line& line, int) {
         if (line.done())

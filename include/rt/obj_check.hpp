@@ -27,6 +27,7 @@
 #include "error.hpp"
 #include "mtl_reader.hpp"
 #include "obj_line.hpp"
+#include "path_text.hpp"
 #include "text_line.hpp"
 #include "vec.hpp"
 
@@ -232,21 +233,22 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 // a file read again would add all its materials again, so a
                 // short OBJ line could multiply a large MTL file in memory
                 std::error_code ec;
-                const std::filesystem::path canonical = std::filesystem::weakly_canonical(folder / file, ec);
-                const std::string key = ec ? (folder / file).lexically_normal().string() : canonical.string();
+                const std::filesystem::path library = folder / utf8_path(file);
+                const std::filesystem::path canonical = std::filesystem::weakly_canonical(library, ec);
+                const std::string key = utf8_text(ec ? library.lexically_normal() : canonical);
                 if (std::find(loaded_libraries.begin(), loaded_libraries.end(), key) != loaded_libraries.end())
                     continue;
                 loaded_libraries.push_back(key);
                 std::error_code missing;
-                if (!std::filesystem::exists(folder / file, missing) && !missing) {
+                if (!std::filesystem::exists(library, missing) && !missing) {
                     missing_library = true;
                     warnings.add(obj_warnings::missing_library, at, "the material library '" + printable(file, 60) + "'",
                                  "no such file beside the OBJ file",
                                  "its materials are the default material; copy the MTL file beside the OBJ file");
                     continue;
                 }
-                out.libraries.push_back(folder / file);
-                read_mtl(folder / file, at, limits.max_bytes, materials);
+                out.libraries.push_back(library);
+                read_mtl(library, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
             if (line.done())

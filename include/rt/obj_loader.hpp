@@ -75,6 +75,7 @@
 #include "mesh.hpp"
 #include "mtl_reader.hpp"
 #include "obj_check.hpp"
+#include "path_text.hpp"
 #include "text_file.hpp"
 #include "triangulate.hpp"
 
@@ -102,7 +103,7 @@ public:
 /// rt::error with file:line:col for a missing, unreadable or malformed file.
 inline obj_result load_obj(const std::filesystem::path& path, const obj_limits& limits = {})
 {
-    const std::string name = path.string();
+    const std::string name = detail::utf8_text(path);
     const std::string text = detail::read_text(path, "an OBJ", limits.max_bytes, {});
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
     std::vector<detail::mtl_entry> mtl;

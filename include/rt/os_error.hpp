@@ -1,23 +1,20 @@
 // os_error.hpp - why a file could not be read or written, in words a user can
-// act on: the reason comes from errno (POSIX, IEEE Std 1003.1-2017, <errno.h>),
-// so that "a folder you cannot enter", "a symbolic link loop" and "no such file"
-// are three different messages, not one.
+// act on: the reason comes from errno (POSIX, IEEE Std 1003.1-2017, <errno.h>;
+// on Windows the system's error mapped to errno by platform.hpp), so that "a
+// folder you cannot enter", "a symbolic link loop" and "no such file" are
+// three different messages, not one.
 #pragma once
 
 #include <cerrno>
-#include <climits>
+#include <cstddef>
 #include <cstdint>
-#include <fstream>
 #include <filesystem>
 #include <string>
 #include <system_error>
 
-#include <fcntl.h>
-#include <sys/resource.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include "error.hpp"
+#include "path_text.hpp"
+#include "platform.hpp"
 
 namespace rt {
 
@@ -55,12 +52,12 @@ inline std::string reason_of(int code)
     }
 }
 
-/// The longest file name (one path component) the folder `folder` accepts:
-/// pathconf(_PC_NAME_MAX), or 255 (NAME_MAX of Linux file systems) when unknown.
+/// The longest file name (one path component) the folder `folder` accepts, in
+/// bytes on POSIX (pathconf(_PC_NAME_MAX), or 255, NAME_MAX of Linux file
+/// systems, when unknown) and UTF-16 characters on Windows (255).
 inline std::size_t name_max(const std::filesystem::path& folder)
 {
-    const long limit = ::pathconf(folder.c_str(), _PC_NAME_MAX);
-    return limit > 0 ? std::size_t(limit) : std::size_t(255);
+    return detail::longest_name(folder);
 }
 
 /// Throws rt::error with the reason unless `path` can be opened for reading.
@@ -69,65 +66,53 @@ inline std::size_t name_max(const std::filesystem::path& folder)
 /// their own words. Call it first, before any work.
 inline void check_readable(const std::filesystem::path& path, const std::string& what)
 {
-    const source_location at{path.string()};
-    struct stat status {};
-    if (::stat(path.c_str(), &status) != 0) {
-        const int code = errno;
-        struct stat link {};
-        switch (code) {
-        case ENOENT:
-            if (::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode))
-                throw error(at, "expected " + what + ", found a symbolic link to nothing; check where it points");
-            throw error(at, "expected " + what + ", found no such file; check the path");
-        case EACCES:
-            throw error(at, "expected " + what + ", found a folder on its path that cannot be entered "
-                                                 "(permission denied); check the folders' permissions");
-        case ELOOP:
-            throw error(at, "expected " + what + ", found a symbolic link loop; check the links on the path");
-        case ENAMETOOLONG:
-            throw error(at, "expected " + what + ", found a path too long for the system (a name over " +
-                                std::to_string(name_max(".")) + " bytes, or the path over " +
-                                std::to_string(PATH_MAX) + "); shorten it");
-        case ENOTDIR:
-            throw error(at, "expected " + what + ", found a path that goes through a file as if it were a folder; "
-                                                 "check the path");
-        default:
-            throw error(at, "expected " + what + ", found one that cannot be examined (" + reason_of(code) + ")");
-        }
+    const source_location at{detail::utf8_text(path)};
+    const detail::file_status status = detail::status_of(path);
+    switch (status.error) {
+    case 0:
+        break;
+    case ENOENT:
+        if (detail::is_symbolic_link(path))
+            throw error(at, "expected " + what + ", found a symbolic link to nothing; check where it points");
+        throw error(at, "expected " + what + ", found no such file; check the path");
+    case EACCES:
+        throw error(at, "expected " + what + ", found a folder on its path that cannot be entered "
+                                             "(permission denied); check the folders' permissions");
+    case ELOOP:
+        throw error(at, "expected " + what + ", found a symbolic link loop; check the links on the path");
+    case ENAMETOOLONG:
+        throw error(at, "expected " + what + ", found a path too long for the system (a name over " +
+                            std::to_string(name_max(".")) + " " + detail::length_unit + ", or the path over " +
+                            std::to_string(detail::longest_path()) + "); shorten it");
+    case ENOTDIR:
+        throw error(at, "expected " + what + ", found a path that goes through a file as if it were a folder; "
+                                             "check the path");
+    default:
+        throw error(at, "expected " + what + ", found one that cannot be examined (" + reason_of(status.error) + ")");
     }
-    if (!S_ISREG(status.st_mode))
+    if (!status.regular)
         return; // a folder or a special file: the loaders say what they expected
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        const int code = errno;
+    const int code = detail::open_for_reading(path);
+    if (code != 0)
         throw error(at, "expected " + what + " that can be read, found " +
                             (code == EACCES || code == EPERM ? std::string("one without read permission for this user")
                                                              : "one that cannot be opened (" + reason_of(code) + ")") +
                             "; check its permissions");
-    }
-    ::close(fd);
 }
 
 /// The process's address-space limit in bytes (getrlimit(RLIMIT_AS), what
-/// `ulimit -v` sets), or 0 when there is none.
+/// `ulimit -v` sets), or 0 when there is none (always on Windows).
 inline std::uint64_t memory_limit()
 {
-    struct rlimit limit {};
-    if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY)
-        return 0;
-    return std::uint64_t(limit.rlim_cur);
+    return detail::process_memory_limit();
 }
 
-/// The process's address space in use now, in bytes (the first field of
-/// /proc/self/statm, in pages; proc(5)), or 0 where it cannot be read.
+/// The process's memory in use now, in bytes, or 0 where it cannot be read:
+/// on Linux its address space (the first field of /proc/self/statm, proc(5)),
+/// on Windows its commit charge (platform.hpp says why).
 inline std::uint64_t memory_in_use()
 {
-    std::ifstream statm("/proc/self/statm");
-    std::uint64_t pages = 0;
-    if (!(statm >> pages))
-        return 0;
-    const long page = ::sysconf(_SC_PAGESIZE);
-    return pages * std::uint64_t(page > 0 ? page : 4096);
+    return detail::process_memory_in_use();
 }
 
 /// "1234 MiB" (rounded up).

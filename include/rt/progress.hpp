@@ -4,7 +4,7 @@
 // bar is drawn on stderr, and only when stderr is a terminal (a log file or a
 // pipe would fill with carriage returns); the one-line summary at the end is
 // for everyone. The terminal test is the one non-portable call of the
-// renderer, kept here and guarded: POSIX isatty, Windows _isatty, and "not a
+// renderer, made by platform.hpp: POSIX isatty, Windows _isatty, and "not a
 // terminal" where neither exists.
 #pragma once
 
@@ -16,28 +16,15 @@
 #include <sstream>
 #include <string>
 
+#include "platform.hpp"
 #include "renderer.hpp"
-
-#if defined(_WIN32)
-#include <io.h>
-#elif defined(__has_include)
-#if __has_include(<unistd.h>)
-#include <unistd.h>
-#endif
-#endif
 
 namespace rt {
 
 /// True when stderr is a terminal (where a progress bar can redraw itself).
 inline bool stderr_is_terminal()
 {
-#if defined(_WIN32)
-    return _isatty(_fileno(stderr)) != 0;
-#elif defined(STDERR_FILENO)
-    return isatty(STDERR_FILENO) != 0;
-#else
-    return false;
-#endif
+    return detail::terminal_on_stderr();
 }
 
 /// A duration for people: "0.42 s", "12.3 s", "2 min 05 s", "1 h 02 min".

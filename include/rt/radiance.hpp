@@ -95,26 +95,26 @@ struct counting_accelerator {
 /// from s.cam for the thin lens to focus where s.lens says.
 inline radiance_function make_radiance(const scene& s, std::shared_ptr<const accelerator> accel, aov_kind aov)
 {
-    const real far = std::numeric_limits<real>::infinity();
+    const real unbounded = std::numeric_limits<real>::infinity();
     switch (aov) {
     case aov_kind::rays:
         return [](const ray& r, sample_context&) { return direction_to_color(r.direction); };
     case aov_kind::depth:
         // the distance along the ray, t |d|; 0 where the ray misses
-        return [accel, far](const ray& r, sample_context&) {
+        return [accel, unbounded](const ray& r, sample_context&) {
             hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? color(float(hit.t * glm::length(r.direction))) : color(0.0f);
+            return accel->closest_hit(r, 0, unbounded, hit) ? color(float(hit.t * glm::length(r.direction))) : color(0.0f);
         };
     case aov_kind::normal:
         // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
-        return [accel, far](const ray& r, sample_context&) {
+        return [accel, unbounded](const ray& r, sample_context&) {
             hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? color((hit.normal + vec3(1)) * real(0.5)) : color(0.0f);
+            return accel->closest_hit(r, 0, unbounded, hit) ? color((hit.normal + vec3(1)) * real(0.5)) : color(0.0f);
         };
     case aov_kind::position:
-        return [accel, far](const ray& r, sample_context&) {
+        return [accel, unbounded](const ray& r, sample_context&) {
             hit_record hit;
-            return accel->closest_hit(r, 0, far, hit) ? color(hit.point) : color(0.0f);
+            return accel->closest_hit(r, 0, unbounded, hit) ? color(hit.point) : color(0.0f);
         };
     case aov_kind::none: break;
     }

@@ -21,6 +21,7 @@
 #include "light.hpp"
 #include "mesh.hpp"
 #include "obj_loader.hpp"
+#include "path_text.hpp"
 #include "ray.hpp"
 #include "scene.hpp"
 #include "scene_loader.hpp"
@@ -32,7 +33,7 @@ namespace rt {
 /// True when `path` ends in ".obj" (any case): a bare model, not a scene file.
 inline bool has_obj_extension(const std::filesystem::path& path)
 {
-    std::string extension = path.extension().string();
+    std::string extension = detail::utf8_text(path.extension());
     for (char& c : extension)
         c = char(std::tolower(static_cast<unsigned char>(c)));
     return extension == ".obj";
@@ -100,7 +101,7 @@ inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny, c
     s.shapes.emplace_back(std::move(obj.geometry));
     const aabb box = bounds(std::get<mesh>(s.shapes.front())); // not scene_bounds: a stage-01 exercise
     if (box.empty())
-        throw error(source_location{path.string()}, "expected a model with at least one triangle, found none");
+        throw error(source_location{detail::utf8_text(path)}, "expected a model with at least one triangle, found none");
     const real pi = real(3.14159265358979323846);
     const vec3 centre = box.center();
     const real radius = std::max(glm::length(box.extent()) / 2, real(1e-6));

@@ -35,6 +35,7 @@
 #include "camera_statement.hpp"
 #include "error.hpp"
 #include "obj_loader.hpp"
+#include "path_text.hpp"
 #include "scene.hpp"
 #include "scene_statement.hpp"
 #include "text_file.hpp"
@@ -281,7 +282,7 @@ private:
     void read_mesh(statement& line)
     {
         const source_location where = line.here();
-        const std::filesystem::path relative = line.word("an OBJ file path");
+        const std::filesystem::path relative = utf8_path(line.word("an OBJ file path"));
         int material_index = -2; // -2: keep the materials of the OBJ's MTL file
         real scale = 1;
         vec3 translate(0);
@@ -311,9 +312,9 @@ private:
                               m.dropped_degenerate > 0 ? "only " + std::to_string(m.dropped_degenerate) +
                                                              " degenerate (zero-area) triangle(s)"
                                                        : "no faces",
-                              "check the OBJ file " + found_text(relative.string()));
+                              "check the OBJ file " + found_text(utf8_text(relative)));
         triangles_ += m.triangles.size();
-        m.source = relative.string();
+        m.source = utf8_text(relative);
         for (vec3& p : m.positions) {
             p = p * scale + translate;
             // the OBJ reader's limit holds after scale and translate too: beyond it
@@ -463,7 +464,7 @@ inline scene load_scene_from_string(const std::string& text, const std::string& 
 /// Loads a scene file. Throws rt::error with file:line:col on any problem.
 inline scene load_scene(const std::filesystem::path& path, const load_options& options = {})
 {
-    const std::string name = path.string();
+    const std::string name = detail::utf8_text(path);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw error(source_location{name}, "expected a scene file, found a folder; name the .scene file itself");

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "error.hpp"
+#include "path_text.hpp"
 
 namespace rt {
 
@@ -162,7 +163,7 @@ void for_each_line(const std::string& text, const std::string& file, Each&& each
 inline std::string read_text(const std::filesystem::path& path, const std::string& what, std::uintmax_t max_bytes,
                              const source_location& named_at)
 {
-    const std::string name = printable(path.string());
+    const std::string name = printable(utf8_text(path));
     std::error_code ec;
     const source_location at = named_at.file.empty() ? source_location{name} : named_at;
     if (std::filesystem::is_directory(path, ec))

@@ -28,7 +28,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdint>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -36,10 +35,7 @@
 #include <vector>
 
 #include "../parallel.hpp"
-
-#if defined(__linux__)
-#include <sys/mman.h> // mmap, madvise, munmap
-#endif
+#include "../platform_pages.hpp"
 
 namespace rt {
 namespace detail {
@@ -76,8 +72,8 @@ struct default_init_allocator : std::allocator<T> {
 /// default_init_allocator for the large arrays of a tree and its build (see
 /// the top of this file): from huge_page_threshold bytes on Linux, an array of
 /// its own mapping, 2 MB aligned and marked MADV_HUGEPAGE (a hint: ignored
-/// where transparent huge pages are off); elsewhere, and for smaller arrays,
-/// operator new, aligned to a cache line.
+/// where transparent huge pages are off; platform_pages.hpp maps it); elsewhere, and
+/// for smaller arrays, operator new, aligned to a cache line.
 template <class T>
 struct large_array_allocator : default_init_allocator<T> {
     template <class U>
@@ -100,34 +96,21 @@ struct large_array_allocator : default_init_allocator<T> {
     {
         if (n > (std::size_t(-1) - 2 * huge_page) / sizeof(T)) // mapped_bytes(n) + huge_page must not wrap
             throw std::bad_array_new_length();
-#if defined(__linux__)
-        if (n * sizeof(T) >= huge_page_threshold) {
-            // one page more than asked, then the parts before and after the
-            // first 2 MB boundary's run are given back
-            const std::size_t bytes = mapped_bytes(n);
-            void* mapped = mmap(nullptr, bytes + huge_page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-            if (mapped == MAP_FAILED)
+        if (maps_huge_pages && n * sizeof(T) >= huge_page_threshold) {
+            void* mapped = map_huge_pages(mapped_bytes(n), huge_page); // 2 MB aligned
+            if (mapped == nullptr)
                 throw std::bad_alloc();
-            const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(mapped);
-            const std::uintptr_t aligned = (start + huge_page - 1) / huge_page * huge_page;
-            if (aligned != start)
-                munmap(mapped, aligned - start);
-            munmap(reinterpret_cast<void*>(aligned + bytes), start + huge_page - aligned); // at least 4 KB
-            madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
-            return reinterpret_cast<T*>(aligned);
+            return static_cast<T*>(mapped);
         }
-#endif
         return static_cast<T*>(::operator new(n * sizeof(T), alignment));
     }
 
     void deallocate(T* p, std::size_t n) noexcept
     {
-#if defined(__linux__)
-        if (n * sizeof(T) >= huge_page_threshold) {
-            munmap(p, mapped_bytes(n));
+        if (maps_huge_pages && n * sizeof(T) >= huge_page_threshold) {
+            unmap_huge_pages(p, mapped_bytes(n));
             return;
         }
-#endif
         ::operator delete(p, alignment);
     }
 
