@@ -9,7 +9,8 @@
 2. The reference builds with -Werror and passes every test (hidden suites included; the tools'
    own tests, label tools, are left to CI's ordinary ctest run).
 3. A kit with every stage stripped builds with -Werror (test suites, stage programs and the
-   header check; also with clang++ when it is installed), and then
+   header check; also with clang++ and libc++, the standard library of macOS, when they are
+   installed: its library and stage suites are judged by the same rule), and then
    - a case of a stripped stage either passes (it tests unmarked code) or fails with the
      not-done message of one of its own stage's exercises; every stripped stage has at
      least one such failure (so its tests can fail);
@@ -41,6 +42,7 @@ The last line reads "check_kit: N passed, M failed" (one check per kit) and the 
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import re
@@ -127,6 +129,16 @@ def run(args: Sequence[str], cwd: Optional[Path] = None, timeout: Optional[float
         return False, (e.stdout or b"").decode("utf-8", "replace") + f"\n(timed out after {timeout} s)"
 
 
+@functools.lru_cache(maxsize=None)
+def has_libcxx() -> bool:
+    """clang++ can compile and link against libc++ here (Debian: libc++-dev, libc++abi-dev)."""
+    with tempfile.TemporaryDirectory() as folder:
+        source = Path(folder) / "probe.cpp"
+        source.write_text("#include <string>\nint main() { return int(std::string(\"a\").size()) - 1; }\n")
+        ok, _ = run(["clang++", "-stdlib=libc++", str(source), "-o", str(Path(folder) / "probe")])
+        return ok
+
+
 def first_error(output: str) -> str:
     for line in output.splitlines():
         if re.search(r"\b(error|Error)\b", line):
@@ -153,13 +165,16 @@ def program_targets(root: Path) -> List[Tuple[str, Path]]:
 
 
 def run_ctest(build: Path, jobs: int, timeout: int, junit: Path,
-              env: Optional[Dict[str, str]] = None, numbers: Optional[Sequence[int]] = None
-              ) -> Tuple[List[CaseResult], str]:
+              env: Optional[Dict[str, str]] = None, numbers: Optional[Sequence[int]] = None,
+              labels: Optional[str] = None) -> Tuple[List[CaseResult], str]:
     """Runs every test but the tools' own (label tools: CI's ordinary ctest run has them),
-    or of those only the ones numbered `numbers` (ctest -N's numbers)."""
+    or of those only the ones numbered `numbers` (ctest -N's numbers), or only those
+    whose label matches the regular expression `labels`."""
     if junit.exists():
         junit.unlink()
     chosen = ["-I", "0,0,0," + ",".join(str(n) for n in numbers)] if numbers else []
+    if labels:
+        chosen += ["-L", labels]
     _, out = run(["ctest", "--test-dir", str(build), "-j", str(jobs), "--timeout", str(timeout),
                   "-LE", "^tools$", "--output-junit", str(junit), "--no-tests=error", *chosen], env=env)
     if not junit.is_file():
@@ -546,9 +561,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     # checks); the kit with every stage stripped builds them anyway, to prove
     # they compile without the exercises.
     builder.extra = ["-DRT_BUILD_BENCH=ON", "-DRT_HEADER_CHECK=ON"]
-    clang = None if args.no_clang or not shutil.which("clang++") else Builder(kit, kit / "build-clang", args.jobs, "clang++")
-    if clang is not None:
+    # clang++ with libc++, the standard library of macOS (the libcxx preset's choice,
+    # without its sanitizers): the stripped kit builds and its suites judge as g++'s do
+    clang = None
+    if not args.no_clang and shutil.which("clang++"):
+        clang = Builder(kit, kit / "build-libcxx", args.jobs, "clang++")
         clang.extra = ["-DRT_HEADER_CHECK=ON"]
+        if has_libcxx():
+            clang.extra += ["-DCMAKE_CXX_FLAGS=-stdlib=libc++", "-DRT_TINYOBJLOADER_FROM_HEADER=ON"]
     per_stage = [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
     plans = [("all stages stripped", set(all_stages))]
     if args.only:
@@ -596,11 +616,21 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             builder.configured = False
             (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
         if first and clang is not None:
-            ok, out = clang.targets(test_targets(kit) + ["rt_header_check"])
+            library = "libc++" if has_libcxx() else "libstdc++ (libc++ is not installed)"
+            ok, out = clang.targets(["rt_suites", "rt_header_check"])
             if not ok:
-                report.problems.append(f"clang++ build failed (-Werror): {first_error(out)}")
+                report.problems.append(f"clang++ with {library}: build failed (-Werror): {first_error(out)}")
             else:
-                report.notes.append("clang++ -Werror: the stripped kit's suites and header check build")
+                clang_report = KitReport(f"{name}, clang++ with {library}")
+                cases, out = run_ctest(kit / "build-libcxx", args.jobs, args.timeout, work / "kit-libcxx.xml",
+                                       labels="^(stage[0-9][0-9]|library)$")
+                if not cases:
+                    report.problems.append(f"clang++ with {library}: no test ran: {first_error(out)}")
+                judge(clang_report, cases, {r.stage for r in plan.stripped}, region_messages)
+                report.problems += [f"clang++ with {library}: {p}" for p in clang_report.problems]
+                report.notes.append(f"clang++ with {library}, -Werror: the suites and the header check build; "
+                                    f"{clang_report.passed} of {clang_report.cases} cases pass, "
+                                    f"{clang_report.not_done} fail with their stage's not-done message")
         report.seconds = time.monotonic() - t0
         reports.append(report)
         print_report(report)
