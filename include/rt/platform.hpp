@@ -1,8 +1,9 @@
 // platform.hpp - every call rt makes to the operating system, in one place:
 // creating, syncing, renaming and removing files, asking what a path is,
 // removing temporary files when the program is interrupted, the memory limit,
-// whether stderr is a terminal. (The BVH's huge pages are platform_pages.hpp's:
-// the fast path never sees <windows.h> and its macros.)
+// whether stderr is a terminal, a console that shows UTF-8. (The BVH's huge
+// pages are platform_pages.hpp's: the fast path never sees <windows.h> and its
+// macros.)
 //
 // Usage (the library's own headers are its users):
 //     rt::detail::new_file file;
@@ -363,6 +364,31 @@ inline bool terminal_on_stderr()
     return ::_isatty(::_fileno(stderr)) != 0;
 }
 
+/// While it lives, a console window shows the program's UTF-8 output (rt's
+/// messages name files as UTF-8, path_text.hpp) as UTF-8 rather than in its
+/// OEM code page, where "scène" reads "scÃ¨ne"; the console's code page is
+/// given back when it ends (Microsoft Learn, SetConsoleOutputCP). Output to a
+/// file or a pipe is bytes either way.
+class utf8_console {
+public:
+    utf8_console() : previous_(::GetConsoleOutputCP())
+    {
+        if (previous_ != 0 && previous_ != CP_UTF8 && ::SetConsoleOutputCP(CP_UTF8))
+            changed_ = true;
+    }
+    ~utf8_console()
+    {
+        if (changed_)
+            ::SetConsoleOutputCP(previous_);
+    }
+    utf8_console(const utf8_console&) = delete;
+    utf8_console& operator=(const utf8_console&) = delete;
+
+private:
+    UINT previous_;
+    bool changed_ = false;
+};
+
 
 #elif defined(__unix__) || (defined(__APPLE__) && defined(__MACH__))
 
@@ -576,6 +602,13 @@ inline bool terminal_on_stderr()
     return ::isatty(STDERR_FILENO) != 0;
 }
 
+/// A terminal here shows UTF-8 as its locale says: nothing to change.
+class utf8_console {
+public:
+    utf8_console() = default;
+    utf8_console(const utf8_console&) = delete;
+    utf8_console& operator=(const utf8_console&) = delete;
+};
 
 #else
 
@@ -694,6 +727,14 @@ inline bool terminal_on_stderr()
 {
     return false;
 }
+
+/// Nothing is known of the console here: nothing to change.
+class utf8_console {
+public:
+    utf8_console() = default;
+    utf8_console(const utf8_console&) = delete;
+    utf8_console& operator=(const utf8_console&) = delete;
+};
 
 #endif
 

@@ -38,7 +38,7 @@ int main(int argc, char** argv)
             return 0; // --help
         const std::string& path = *scene_file;
 
-        rt::check_readable(path, "a scene file"); // the reason (errno) when it cannot be read
+        rt::check_readable(stage::file_argument(path), "a scene file"); // the reason (errno) when it cannot be read
         const rt::scene s = stage::load_scene(path);
         std::printf("scene %s\n", path.c_str());
         std::printf("image %d x %d, %d sample(s) per pixel, max depth %d\n", s.width, s.height, s.samples, s.max_depth);

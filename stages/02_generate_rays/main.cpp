@@ -13,6 +13,7 @@
 
 #include <rt/camera.hpp>
 #include <rt/image_io.hpp>
+#include <rt/path_text.hpp>
 #include <rt/ray_image.hpp>
 #include <rt/scene_loader.hpp>
 
@@ -59,19 +60,19 @@ int main(int argc, char** argv)
         if (!scene_file)
             return 0; // --help
         const std::string& scene_path = *scene_file;
-        std::vector<std::filesystem::path> outputs = {output};
+        std::vector<std::filesystem::path> outputs = {stage::file_argument(output)};
         if (!edge_prefix.empty()) {
-            outputs.emplace_back(edge_prefix + "-1.png");
-            outputs.emplace_back(edge_prefix + "-16.png");
+            outputs.push_back(stage::file_argument(edge_prefix + "-1.png"));
+            outputs.push_back(stage::file_argument(edge_prefix + "-16.png"));
             for (std::size_t k = 1; k < outputs.size(); ++k)
                 if (std::filesystem::absolute(outputs[k]).lexically_normal() ==
                     std::filesystem::absolute(outputs[0]).lexically_normal())
                     throw rt::error("-o " + output + ": expected an output apart from the edge pictures, found " +
-                                    outputs[k].string() + " among them; choose another -o or --edge");
+                                    rt::detail::utf8_text(outputs[k]) + " among them; choose another -o or --edge");
         }
         for (const std::filesystem::path& path : outputs) { // fail before the work, not after it
-            rt::check_writable(path.string());
-            rt::check_image_path(path.string());
+            rt::check_writable(path);
+            rt::check_image_path(path);
         }
         stage::check_input_and_outputs(scene_path, "a scene file", outputs);
 
@@ -82,7 +83,8 @@ int main(int argc, char** argv)
             if (s.cam.kind == rt::projection::orthographic)
                 s.cam.fov_degrees.reset();
         }
-        rt::check_not_input(outputs, rt::files_read(scene_path, s)); // its OBJ and MTL files too; nothing is written yet
+        // its OBJ and MTL files too; nothing is written yet
+        rt::check_not_input(outputs, rt::files_read(stage::file_argument(scene_path), s));
         const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
         const rt::image rays = rt::render_ray_directions(gen);
         if (edge_prefix.empty()) {
@@ -90,8 +92,8 @@ int main(int argc, char** argv)
         } else {
             const stage::edge_pictures edge = stage::render_edge(gen);
             stage::save_images({{output, &rays, 1.0f},
-                                {outputs[1].string(), &edge.centre, 1.0f},
-                                {outputs[2].string(), &edge.sixteen, 1.0f}}); // all three or none
+                                {edge_prefix + "-1.png", &edge.centre, 1.0f},
+                                {edge_prefix + "-16.png", &edge.sixteen, 1.0f}}); // all three or none
             // the RMS difference from the exact fraction of each pixel above the edge (edge.hpp)
             std::fprintf(stderr,
                          "edge: %d pixels on the edge, RMS error of their values: 1 ray at the centre %.4f, "

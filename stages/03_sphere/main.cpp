@@ -132,7 +132,9 @@ int main(int argc, char** argv)
         const std::string hit_png = prefix + "-hit.png", normal_png = prefix + "-normal.png",
                           normal_pfm = prefix + "-normal.pfm", depth_pfm = prefix + "-depth.pfm",
                           depth_png = prefix + "-depth.png";
-        const std::vector<std::filesystem::path> outputs{hit_png, normal_png, normal_pfm, depth_pfm, depth_png};
+        std::vector<std::filesystem::path> outputs;
+        for (const std::string& name : {hit_png, normal_png, normal_pfm, depth_pfm, depth_png})
+            outputs.push_back(stage::file_argument(name));
         if (!pixel.wanted) {
             for (const std::filesystem::path& output : outputs)
                 rt::check_writable(output); // fail before the work, not after it
@@ -141,7 +143,7 @@ int main(int argc, char** argv)
 
         const rt::scene s = stage::load_scene(scene_path);
         if (!pixel.wanted) {
-            rt::check_not_input(outputs, rt::files_read(scene_path, s)); // its OBJ and MTL files too
+            rt::check_not_input(outputs, rt::files_read(stage::file_argument(scene_path), s)); // its OBJ and MTL files too
             // five images of 12 bytes a pixel (three floats), and the PNGs' bytes
             rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (5 * 12 + 3),
                                  "five " + std::to_string(s.width) + "x" + std::to_string(s.height) + " images");

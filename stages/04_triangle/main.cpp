@@ -182,14 +182,15 @@ int main(int argc, char** argv)
         if (!pixel.wanted) {
             stage::check_image_output(output); // every option, the output format included, before any work
             stage::check_input_and_outputs(input, ends_with(input, ".scene") ? "a scene file" : "an OBJ file",
-                                           {output});
+                                           {stage::file_argument(output)});
         }
 
         const auto load_start = clock_type::now();
         rt::scene s = width > 0 ? stage::load_input(input, width, height, strict)
                                 : stage::load_input(input, std::nullopt, std::nullopt, strict);
         if (!pixel.wanted)
-            rt::check_not_input(output, rt::files_read(input, s)); // its OBJ and MTL files too
+            rt::check_not_input(stage::file_argument(output), // its OBJ and MTL files too
+                                rt::files_read(stage::file_argument(input), s));
         if (width == 0) {
             width = s.width;
             height = s.height;

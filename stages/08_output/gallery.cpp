@@ -15,6 +15,7 @@
 // (rings centred elsewhere) is aliasing.
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <ostream>
 #include <string>
@@ -84,7 +85,8 @@ int main(int argc, char** argv)
             std::cerr << "usage: stage08_gallery OUTPUT.png\n";
             return argc == 2 ? 0 : 2;
         }
-        rt::check_image_output(argv[1]);
+        const std::filesystem::path output = stage::file_argument(argv[1]);
+        rt::check_image_output(output);
         const int panel = 128, gap = 4, spp = 16;
         const rt::sampler_kind samplers[] = {rt::sampler_kind::center, rt::sampler_kind::grid, rt::sampler_kind::random,
                                              rt::sampler_kind::jittered, rt::sampler_kind::halton};
@@ -112,7 +114,7 @@ int main(int argc, char** argv)
         };
         if (!stbi_write_png_to_func(append, &png, sheet.width, sheet.height, 1, grey.data(), sheet.width))
             throw rt::error("PNG encoding failed");
-        rt::write_atomically(argv[1], [&](std::ostream& out) {
+        rt::write_atomically(output, [&](std::ostream& out) {
             out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
         });
         std::cerr << "wrote " << argv[1] << '\n';

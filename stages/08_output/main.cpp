@@ -152,11 +152,12 @@ int main(int argc, char** argv)
         if (set.pixel.wanted && render.aov != rt::aov_kind::none)
             throw rt::error("expected --pixel or --aov, found both; the story is the shaded image's");
         if (!set.pixel.wanted) {
-            rt::check_image_output(set.output); // fail before the work, not after it
+            rt::check_image_output(stage::file_argument(set.output)); // fail before the work, not after it
             if (set.pattern == pattern_kind::none)
-                stage::check_input_and_outputs(render.input,
-                                               rt::has_obj_extension(render.input) ? "an OBJ file" : "a scene file",
-                                               {set.output});
+                stage::check_input_and_outputs(
+                    render.input,
+                    rt::has_obj_extension(stage::file_argument(render.input)) ? "an OBJ file" : "a scene file",
+                    {stage::file_argument(set.output)});
         }
 
         rt::scene scene;
@@ -165,7 +166,8 @@ int main(int argc, char** argv)
         else
             scene = stage::load_render_input(render); // with --camera and --max-depth applied
         if (set.pattern == pattern_kind::none)
-            rt::check_not_input(set.output, rt::files_read(render.input, scene)); // its OBJ and MTL files too
+            rt::check_not_input(stage::file_argument(set.output),
+                               rt::files_read(stage::file_argument(render.input), scene)); // its OBJ and MTL files too
 
         rt::render_options options = stage::render_options_for(render, scene);
         options.crop = set.crop;
@@ -174,7 +176,7 @@ int main(int argc, char** argv)
             // the image (three floats a pixel), then for 8 bits its bytes, and for
             // a PNG the filtered rows stb_image_write compresses: a lower bound
             const rt::crop_window area = options.crop.value_or(rt::crop_window{0, options.width, 0, options.height});
-            const std::string format = rt::image_format_of(set.output);
+            const std::string format = rt::image_format_of(stage::file_argument(set.output));
             const std::uint64_t per_pixel = format == ".pfm" ? 12 : format == ".ppm" ? 15 : 18;
             rt::check_memory_for(std::uint64_t(area.x1 - area.x0) * std::uint64_t(area.y1 - area.y0) * per_pixel,
                                  "a " + std::to_string(area.x1 - area.x0) + "x" + std::to_string(area.y1 - area.y0) +

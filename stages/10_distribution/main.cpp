@@ -53,7 +53,7 @@ int main(int argc, char** argv)
             return 0; // --help
         if (!pixel.wanted) {
             stage::check_image_output(output); // every option, the output format included, before any work
-            stage::check_input_and_outputs(*scene_path, "a scene file", {output});
+            stage::check_input_and_outputs(*scene_path, "a scene file", {stage::file_argument(output)});
         }
         const rt::scene s = stage::load_scene(*scene_path);
         if (pixel.wanted) {
@@ -65,7 +65,8 @@ int main(int argc, char** argv)
                 stage::print_story(std::cout, st, s);
             return 0;
         }
-        rt::check_not_input(output, rt::files_read(*scene_path, s)); // its OBJ and MTL files too
+        rt::check_not_input(stage::file_argument(output), // its OBJ and MTL files too
+                            rt::files_read(stage::file_argument(*scene_path), s));
         rt::render_options options;
         options.width = s.width;
         options.height = s.height;

@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <initializer_list>
 #include <iostream>
 #include <optional>
@@ -37,6 +38,7 @@
 #include <rt/config.hpp>
 #include <rt/decimal_text.hpp>
 #include <rt/error.hpp>
+#include <rt/path_text.hpp>
 
 namespace stage {
 
@@ -70,6 +72,17 @@ private:
     std::size_t next_ = 0;
     std::string command_;
 };
+
+/// The file that command-line text names. The text is UTF-8 (on Linux and
+/// macOS as typed; on Windows the programs' manifest, stages/common/windows,
+/// makes it so), while a std::filesystem::path made from a std::string reads
+/// the native narrow encoding, which MinGW's library takes byte by byte: so
+/// every path from the command line is made here, and "scène.scene" opens
+/// the same file on every system.
+inline std::filesystem::path file_argument(const std::string& text)
+{
+    return rt::detail::utf8_path(text);
+}
 
 inline std::string quoted(const std::string& text)
 {

@@ -41,11 +41,11 @@ void render_shaded(const std::string& program, const std::string& scene_path, co
 {
     if (!pixel.wanted) {
         check_image_output(output); // every option, the output format included, before any work
-        check_input_and_outputs(scene_path, "a scene file", {output});
+        check_input_and_outputs(scene_path, "a scene file", {file_argument(output)});
     }
     rt::scene s = stage::load_scene(scene_path);
     if (!pixel.wanted) {
-        rt::check_not_input(output, rt::files_read(scene_path, s)); // its OBJ and MTL files too
+        rt::check_not_input(file_argument(output), rt::files_read(file_argument(scene_path), s)); // its OBJ, MTL files
         // the image (three floats a pixel) and its bytes
         rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (12 + 3),
                              "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image");

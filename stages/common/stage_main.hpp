@@ -15,6 +15,7 @@
 #include <rt/atomic_file.hpp>
 #include <rt/error.hpp>
 #include <rt/os_error.hpp>
+#include <rt/platform.hpp>
 
 #include "command_line.hpp"
 
@@ -85,6 +86,7 @@ inline std::string one_line(const std::string& message)
 template <class Body>
 int run(const char* program, Body&& body)
 {
+    [[maybe_unused]] rt::detail::utf8_console console; // messages name files in UTF-8
     try {
         return body();
     } catch (const rt::exercise_not_done& e) {
@@ -114,8 +116,8 @@ int run(const char* program, Body&& body)
 inline void check_input_and_outputs(const std::string& input, const std::string& what,
                                     const std::vector<std::filesystem::path>& outputs)
 {
-    rt::check_readable(input, what);
-    rt::check_not_input(outputs, {input});
+    rt::check_readable(file_argument(input), what);
+    rt::check_not_input(outputs, {file_argument(input)});
 }
 
 } // namespace stage

@@ -3,13 +3,15 @@
 
 #include <rt/scene_loader.hpp>
 
+#include "command_line.hpp" // file_argument
+
 namespace stage {
 
 rt::scene load_scene(const std::string& path, bool strict)
 {
     rt::load_options options;
     options.obj.strict = strict;
-    return rt::load_scene(path, options);
+    return rt::load_scene(file_argument(path), options);
 }
 
 } // namespace stage

@@ -3,19 +3,24 @@
 
 #include <rt/image_io.hpp>
 
+#include "command_line.hpp" // file_argument
+
 namespace stage {
 
-void save_image(const std::string& path, const rt::image& img, float gamma) { rt::save_image(path, img, gamma); }
+void save_image(const std::string& path, const rt::image& img, float gamma)
+{
+    rt::save_image(file_argument(path), img, gamma);
+}
 
 void save_images(const std::vector<image_output>& outputs)
 {
     std::vector<rt::output_file> files;
     for (const image_output& o : outputs)
-        files.push_back(rt::image_file(o.path, *o.pixels, o.gamma));
+        files.push_back(rt::image_file(file_argument(o.path), *o.pixels, o.gamma));
     rt::write_all_atomically(files);
 }
 
-void check_image_output(const std::string& path) { rt::check_image_output(path); }
+void check_image_output(const std::string& path) { rt::check_image_output(file_argument(path)); }
 
 std::string stored_bytes(const rt::color& c, float gamma)
 {

@@ -123,7 +123,7 @@ std::optional<settings> read_arguments(stage::arguments& args)
                 s.script = args.value_of(arg);
                 if (!s.script.empty() && s.script[0] == '@') {
                     s.script_name = s.script.substr(1);
-                    std::ifstream in(s.script_name, std::ios::binary);
+                    std::ifstream in(stage::file_argument(s.script_name), std::ios::binary);
                     if (!in)
                         throw rt::error(rt::source_location{s.script_name},
                                         "expected a readable script file, found none; check the path after '@'");
@@ -603,11 +603,11 @@ private:
         if (SDL_RenderReadPixels(renderer_.get(), nullptr, SDL_PIXELFORMAT_RGB24, pixels.data(), view_.width * 3) != 0)
             throw sdl_failure("read the window's pixels back");
         SDL_RenderPresent(renderer_.get());
-        const std::string format = rt::image_format_of(path);
+        const std::string format = rt::image_format_of(stage::file_argument(path));
         if (format == ".pfm")
             throw rt::error(rt::source_location{path}, "expected a screenshot named .png or .ppm, found .pfm; "
                                                        "the window holds bytes, not floats");
-        rt::write_atomically(path, [&](std::ostream& out) {
+        rt::write_atomically(stage::file_argument(path), [&](std::ostream& out) {
             if (format == ".ppm") {
                 out << "P6\n" << view_.width << ' ' << view_.height << "\n255\n";
                 out.write(reinterpret_cast<const char*>(pixels.data()), std::streamsize(pixels.size()));
@@ -621,7 +621,7 @@ private:
     void save(const viewer::completed_image& done, const std::string& path, bool tell)
     {
         const rt::encoding enc = rt::output_encoding(done.settings.aov, encoding_, done.pixels);
-        rt::save_image(path, done.pixels, enc);
+        rt::save_image(stage::file_argument(path), done.pixels, enc);
         if (tell)
             std::cerr << "viewer: wrote " << path << " (" << done.pass.samples_per_pixel
                       << " spp); the same image: "
@@ -672,7 +672,7 @@ private:
                 if (!story_)
                     throw rt::error(rt::to_string(c.where) + ": expected a pixel's story, found none: press "
                                                              "'key i' and 'click X Y' first");
-                rt::write_atomically(c.arguments[0],
+                rt::write_atomically(stage::file_argument(c.arguments[0]),
                                      [&](std::ostream& out) { stage::print_story_json(out, *story_, story_scene_); });
             } else if (c.name == "key") {
                 SDL_Event e{};
@@ -692,7 +692,8 @@ private:
             } else if (c.name == "title") {
                 update_title(true);
                 const std::string text = SDL_GetWindowTitle(window_.get());
-                rt::write_atomically(c.arguments[0], [&](std::ostream& out) { out << text << '\n'; });
+                rt::write_atomically(stage::file_argument(c.arguments[0]),
+                                     [&](std::ostream& out) { out << text << '\n'; });
             } else if (c.name == "save" || c.name == "args") {
                 const std::optional<viewer::completed_image> done = progressive_->completed();
                 if (!view_is_current() || !done)
@@ -701,7 +702,7 @@ private:
                     save(*done, c.arguments[0], false);
                 } else {
                     const std::vector<std::string> words = stage08_arguments(set_.render.input, *done, encoding_);
-                    rt::write_atomically(c.arguments[0], [&](std::ostream& out) {
+                    rt::write_atomically(stage::file_argument(c.arguments[0]), [&](std::ostream& out) {
                         for (const std::string& word : words)
                             out << word << '\n';
                     });
@@ -832,17 +833,18 @@ int main(int argc, char** argv)
         if (!arguments)
             return 0; // --help
         const settings& set = *arguments;
-        rt::check_image_output(set.output); // the save key must not fail at the end
+        rt::check_image_output(stage::file_argument(set.output)); // the save key must not fail at the end
         // script errors before the window opens; the files a script writes are outputs too
-        std::vector<std::filesystem::path> outputs{set.output};
+        std::vector<std::filesystem::path> outputs{stage::file_argument(set.output)};
         for (const viewer::script_command& c : viewer::parse_script(set.script, set.script_name))
             if (c.name == "save" || c.name == "screenshot" || c.name == "title" || c.name == "args" ||
                 c.name == "story")
-                outputs.push_back(c.arguments[0]);
-        stage::check_input_and_outputs(set.render.input,
-                                       rt::has_obj_extension(set.render.input) ? "an OBJ file" : "a scene file", outputs);
+                outputs.push_back(stage::file_argument(c.arguments[0]));
+        const bool obj = rt::has_obj_extension(stage::file_argument(set.render.input));
+        stage::check_input_and_outputs(set.render.input, obj ? "an OBJ file" : "a scene file", outputs);
         rt::scene scene = stage::load_render_input(set.render);
-        rt::check_not_input(outputs, rt::files_read(set.render.input, scene)); // its OBJ and MTL files too
+        // its OBJ and MTL files too
+        rt::check_not_input(outputs, rt::files_read(stage::file_argument(set.render.input), scene));
         const sdl_session sdl;
         // without a display SDL falls back to a driver that shows nothing: fine for a script, not for a person
         const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
