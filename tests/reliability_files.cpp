@@ -24,6 +24,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -713,4 +714,136 @@ TEST_CASE("the reason of a failed write: errno named in words")
     CHECK(rt::reason_of(EACCES) == "permission denied");
     CHECK(rt::reason_of(ENAMETOOLONG).find("too long") != std::string::npos);
     CHECK(rt::reason_of(ENOTDIR).find("not a folder") != std::string::npos);
+}
+
+namespace {
+
+using signal_handler = void (*)(int);
+
+signal_handler action_of(int signal_number)
+{
+    struct sigaction current {};
+    REQUIRE(::sigaction(signal_number, nullptr, &current) == 0);
+    return current.sa_handler;
+}
+
+void set_action(int signal_number, signal_handler handler)
+{
+    struct sigaction action {};
+    action.sa_handler = handler;
+    sigemptyset(&action.sa_mask);
+    REQUIRE(::sigaction(signal_number, &action, nullptr) == 0);
+}
+
+void programs_own_handler(int) {}
+
+/// Runs `body` in a child process and returns its exit code (or 128 + the
+/// signal that ended it): signal actions and rt's switch stay the child's.
+template <class Body>
+int in_child(Body body)
+{
+    const pid_t child = ::fork();
+    if (child == 0) {
+        int code = 1;
+        try {
+            code = body();
+        } catch (...) {
+            code = 125;
+        }
+        ::_exit(code);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+} // namespace
+
+TEST_CASE("a save keeps the program's own SIGINT handler, and puts rt's cleanup only where the action is the default")
+{
+    const fs::path folder = scratch("own_handler");
+    const int code = in_child([&] {
+        set_action(SIGINT, programs_own_handler);
+        set_action(SIGTERM, SIG_DFL);
+        set_action(SIGHUP, SIG_IGN);
+        rt::write_atomically(folder / "out.txt", [](std::ostream& out) { out << "saved\n"; });
+        if (action_of(SIGINT) != programs_own_handler)
+            return 10; // the program's handler replaced
+        if (action_of(SIGHUP) != SIG_IGN)
+            return 11; // an ignored signal no longer ignored
+        if (action_of(SIGTERM) == SIG_DFL || action_of(SIGTERM) == SIG_IGN)
+            return 12; // no cleanup where the action was the default
+        return 0;
+    });
+    INFO("10: SIGINT's handler replaced; 11: SIGHUP no longer ignored; 12: no cleanup handler on SIGTERM");
+    CHECK(code == 0);
+}
+
+TEST_CASE("rt::set_interrupt_cleanup(false): a save leaves every signal's action as the program set it")
+{
+    const fs::path folder = scratch("cleanup_off");
+    const int code = in_child([&] {
+        for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
+            set_action(signal_number, SIG_DFL);
+        rt::set_interrupt_cleanup(false);
+        rt::write_atomically(folder / "out.txt", [](std::ostream& out) { out << "saved\n"; });
+        for (int signal_number : {SIGINT, SIGTERM, SIGHUP})
+            if (action_of(signal_number) != SIG_DFL)
+                return 20 + signal_number;
+        return 0;
+    });
+    INFO("20 + n: signal n's action changed by a save although the cleanup was turned off");
+    CHECK(code == 0);
+}
+
+TEST_CASE("a program started after a save has SIGXFSZ's default action: the file size limit still ends it")
+{
+    const fs::path folder = scratch("xfsz_inherited");
+    const int code = in_child([&] {
+        set_action(SIGXFSZ, SIG_DFL);
+        rt::write_atomically(folder / "out.txt", [](std::ostream& out) { out << "saved\n"; });
+        if (action_of(SIGXFSZ) != SIG_DFL)
+            return 30; // the process's action changed, and every program it starts inherits an ignored one
+        // a program the child starts now: past a limit of one block it dies of SIGXFSZ, as without rt
+        const std::string command = "cd '" + folder.string() + "' && ulimit -f 1 && exec head -c 100000 /dev/zero > big";
+        const int status = std::system(command.c_str());
+        if (!WIFSIGNALED(status) || WTERMSIG(status) != SIGXFSZ)
+            return 31;
+        return 0;
+    });
+    INFO("30: SIGXFSZ's action is no longer the default after a save; 31: a program started after the save was not "
+         "ended by SIGXFSZ past its file size limit (it inherited an ignored SIGXFSZ)");
+    CHECK(code == 0);
+}
+
+TEST_CASE("the file size limit is a write error in the process that saves: EFBIG, no death, no partial file")
+{
+    const fs::path folder = scratch("xfsz_error");
+    write_file(folder / "out.txt", "the previous file");
+    const int code = in_child([&] {
+        set_action(SIGXFSZ, SIG_DFL);
+        struct rlimit limit {};
+        ::getrlimit(RLIMIT_FSIZE, &limit);
+        limit.rlim_cur = 4096;
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0)
+            return 40;
+        try {
+            rt::write_atomically(folder / "out.txt", [](std::ostream& out) { out << std::string(100000, 'x'); });
+        } catch (const rt::error& e) {
+            return std::string(e.what()).find("file size limit") != std::string::npos ? 0 : 41;
+        }
+        return 42; // written past the limit?
+    });
+    INFO("40: setrlimit refused; 41: an error without the words 'file size limit'; 42: no error; "
+         "128 + 25: killed by SIGXFSZ");
+    CHECK(code == 0);
+    std::ifstream in(folder / "out.txt");
+    const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK(kept == "the previous file");
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        (void)entry;
+        ++files;
+    }
+    CHECK(files == 1); // no temporary file left
 }

@@ -13,15 +13,18 @@
 //  - no temporary file is left behind: on an exception, on a write error, and
 //    when the program is stopped by SIGINT, SIGTERM or SIGHUP (a handler removes
 //    the temporary files being written, then dies of the signal as it would
-//    have) or on Windows by Ctrl+C, Ctrl+Break or its console closing; SIGXFSZ
-//    (the file size limit, ulimit -f) is ignored so that the write fails with
-//    EFBIG and is reported as an error;
+//    have) or on Windows by Ctrl+C, Ctrl+Break or its console closing;
+//  - the file size limit (ulimit -f) is a write error with a message, not a
+//    death by SIGXFSZ: the writing thread blocks that signal while it writes,
+//    and the process's signal actions are as they were after it;
 //  - the new file's bytes are on the disk (fsync, FlushFileBuffers) before
 //    the rename, so a power cut leaves the old file or the complete new one;
 //  - write_all_atomically writes several files all or none: every temporary
 //    file is complete before the first rename.
 // The POSIX handlers are installed by each write, and only over the default
-// action: a program that handles or ignores these signals itself keeps its way.
+// action: a program that handles or ignores these signals itself keeps its way,
+// and rt::set_interrupt_cleanup(false) turns them off (then an interrupted write
+// leaves its temporary file, "<name>.tmp-<16 hex digits>", behind).
 #pragma once
 
 #include <cstddef>
@@ -214,6 +217,19 @@ inline void check_not_input(const std::vector<std::filesystem::path>& targets,
 {
     for (const std::filesystem::path& target : targets)
         check_not_input(target, inputs);
+}
+
+/// Whether a write installs rt's interrupt cleanup (default: yes). On POSIX, the
+/// first write of a program that left SIGINT, SIGTERM and SIGHUP at their
+/// default action installs a handler that removes the temporary files being
+/// written and then ends the process as the signal would have; on Windows, a
+/// console handler that removes them. Call set_interrupt_cleanup(false) before
+/// the first write in a program that wants its signals untouched (a handler it
+/// installs itself is never replaced either way); an interrupted write then
+/// leaves its temporary file behind.
+inline void set_interrupt_cleanup(bool enabled)
+{
+    detail::temporary_files.cleanup_off.store(enabled ? 0 : 1);
 }
 
 /// Writes `target` atomically: `write(std::ostream&)` fills a temporary file,

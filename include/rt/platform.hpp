@@ -110,6 +110,7 @@ struct temporary_registry {
     static constexpr std::size_t path_capacity = 4200; ///< PATH_MAX (4096) and a margin
     enum : int { free_slot = 0, claimed = 1, registered = 2, removing = 3 };
     std::atomic<int> state[slots];
+    std::atomic<int> cleanup_off; ///< 1: rt::set_interrupt_cleanup(false), no handler is installed
     std::filesystem::path::value_type paths[slots][path_capacity];
 };
 static_assert(std::atomic<int>::is_always_lock_free, "the interrupt cleanup needs lock-free atomics");
@@ -330,6 +331,8 @@ inline BOOL WINAPI remove_temporaries_on_console_event(DWORD)
 /// Windows has no SIGXFSZ: a write past a quota fails with its error.
 inline void install_cleanup_handlers()
 {
+    if (temporary_files.cleanup_off.load())
+        return;
     static const bool installed = ::SetConsoleCtrlHandler(remove_temporaries_on_console_event, TRUE) != 0;
     (void)installed;
 }
@@ -414,19 +417,39 @@ public:
 
     /// Writes every byte; 0, or errno. write() may write fewer bytes than
     /// asked, or none when a signal interrupts it (EINTR): both go on.
+    ///
+    /// A write past the file size limit (`ulimit -f`) raises SIGXFSZ, whose
+    /// default action ends the process with a partial file, and fails with
+    /// EFBIG (POSIX 2017, write()). So this thread blocks SIGXFSZ while it
+    /// writes, takes back the signal its own write raised, and restores its
+    /// mask: the limit becomes an error with a message, and nothing changes
+    /// for other threads or for programs started later (a signal mask is per
+    /// thread, sec. 2.4.1; an ignored SIGXFSZ would be inherited across exec).
     int write(const char* data, std::size_t count)
     {
+        sigset_t file_size, previous;
+        sigemptyset(&file_size);
+        sigaddset(&file_size, SIGXFSZ);
+        ::pthread_sigmask(SIG_BLOCK, &file_size, &previous);
+        int result = 0;
         while (count > 0) {
             const ssize_t written = ::write(fd_, data, count);
             if (written < 0) {
                 if (errno == EINTR)
                     continue;
-                return errno;
+                result = errno;
+                break;
             }
             data += written;
             count -= std::size_t(written);
         }
-        return 0;
+        sigset_t pending;
+        if (!sigismember(&previous, SIGXFSZ) && ::sigpending(&pending) == 0 && sigismember(&pending, SIGXFSZ)) {
+            int taken = 0;
+            ::sigwait(&file_size, &taken); // pending, so it returns at once
+        }
+        ::pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+        return result;
     }
 
     /// Puts the bytes on the device before the rename (fsync(), POSIX 2017): a
@@ -539,12 +562,14 @@ inline void remove_temporaries_and_die(int signal_number)
 }
 
 /// Installs the handler for SIGINT, SIGTERM and SIGHUP where their action is
-/// the default one, and ignores SIGXFSZ where it is the default (so a write past
-/// the file size limit fails with EFBIG instead of killing the program with a
-/// partial file). Called before every write: a few system calls, and a signal
-/// whose action the program has set meanwhile (to handle or ignore it) is left so.
+/// the default one, unless rt::set_interrupt_cleanup(false) was called. Called
+/// before every write: a few system calls, and a signal whose action the
+/// program has set meanwhile (to handle or ignore it) is left so. SIGXFSZ is
+/// new_file::write's, in the writing thread alone.
 inline void install_cleanup_handlers()
 {
+    if (temporary_files.cleanup_off.load())
+        return;
     for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
         struct sigaction current {};
         if (::sigaction(signal_number, nullptr, &current) != 0 || (current.sa_flags & SA_SIGINFO) ||
@@ -557,14 +582,6 @@ inline void install_cleanup_handlers()
         sigaddset(&cleanup.sa_mask, SIGTERM);
         sigaddset(&cleanup.sa_mask, SIGHUP);
         ::sigaction(signal_number, &cleanup, nullptr);
-    }
-    struct sigaction current {};
-    if (::sigaction(SIGXFSZ, nullptr, &current) == 0 && !(current.sa_flags & SA_SIGINFO) &&
-        current.sa_handler == SIG_DFL) {
-        struct sigaction ignore {};
-        ignore.sa_handler = SIG_IGN;
-        sigemptyset(&ignore.sa_mask);
-        ::sigaction(SIGXFSZ, &ignore, nullptr);
     }
 }
 

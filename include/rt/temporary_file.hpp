@@ -14,9 +14,10 @@
 // interrupt are in platform.hpp: a signal handler on POSIX, which removes
 // every registered temporary file, then lets the signal kill the process as it
 // would have (POSIX 2017, sec. 2.4.3, lists what a handler may call); a
-// console handler on Windows. On POSIX SIGXFSZ is ignored so that a write over
-// the file size limit fails with EFBIG and is reported instead of killing the
-// program.
+// console handler on Windows (rt::set_interrupt_cleanup(false) installs
+// neither). A write over the file size limit fails with EFBIG and is reported
+// instead of killing the program: platform.hpp's new_file::write blocks SIGXFSZ
+// in the writing thread while it writes.
 #pragma once
 
 #include <cstddef>
