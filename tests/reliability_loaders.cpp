@@ -817,16 +817,14 @@ TEST_CASE("materials: a missing library, usemtl without mtllib or of an unknown 
     }
 }
 
-TEST_CASE("messages: corners 1/ 1// 1/1/ are the catalogue's one line, not tinyobjloader's text")
+TEST_CASE("messages: corners 1/ and 1// are the catalogue's one line, not tinyobjloader's text")
 {
     const std::string prefix = triangle_obj;
     CHECK(starts_with(load_obj_text(prefix + "f 1// 2// 3//\n").error,
                       "m.obj:5:6: expected a normal index after the second '/', found the end of the corner '1//'"));
-    CHECK(starts_with(load_obj_text(prefix + "f 1 2 3/1/\n").error,
-                      "m.obj:5:11: expected a normal index after the second '/', found the end of the corner '3/1/'"));
     CHECK(starts_with(load_obj_text(prefix + "f 1/ 2 3\n").error,
                       "m.obj:5:5: expected a texture coordinate index after '/'"));
-    for (const char* corner : {"1//", "1/1/", "1/"}) {
+    for (const char* corner : {"1//", "1/"}) {
         const std::string message = load_obj_text(prefix + "vt 0 0\nvn 0 0 1\nf " + std::string(corner) + " 2 3\n").error;
         CAPTURE(message);
         CHECK(!has(message, "Failed parse"));
@@ -834,6 +832,41 @@ TEST_CASE("messages: corners 1/ 1// 1/1/ are the catalogue's one line, not tinyo
     }
     // v//vn is still read
     CHECK(load_obj_text(prefix + "vn 0 0 1\nf 1//1 2//1 3//1\n").error.empty());
+}
+
+TEST_CASE("lenient as Blender and trimesh: corners v/vt/ load as v/vt with one warning naming the line, --strict refuses")
+{
+    // trimesh's test models write faces "f 2/2/ 4/4/ 1/1/"
+    const std::string obj = triangle_obj + "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1/ 2/2/ 3/3/\nf 1/1 2/2 3/3\n";
+    const obj_outcome lenient = load_obj_text(obj);
+    REQUIRE(lenient.error.empty());
+    CHECK(lenient.loaded.geometry.triangles.size() == 3); // both faces, as with v/vt
+    CHECK(count_lines(lenient.warnings) == 1);
+    CHECK(lenient.warnings ==
+          "m.obj:8:6: warning: expected v/vt/vn or v/vt, a normal index after the second '/', found nothing after it "
+          "(and 2 more like it); read as v/vt, as Blender reads it; delete the last '/'\n");
+    const obj_outcome strict = load_obj_text(obj, "", true);
+    CHECK(starts_with(strict.error, "m.obj:8:6: expected v/vt/vn or v/vt, a normal index after the second '/', "
+                                    "found nothing after it; read as v/vt"));
+    CHECK(strict.warnings.empty());
+    // the same positions and texture indices as the file written without the last '/'
+    const obj_outcome plain = load_obj_text(triangle_obj + "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 2/2 3/3\n");
+    REQUIRE(plain.error.empty());
+    CHECK(lenient.loaded.geometry.triangles.size() == plain.loaded.geometry.triangles.size());
+    CHECK(lenient.loaded.geometry.texcoord_indices == plain.loaded.geometry.texcoord_indices);
+    CHECK(lenient.loaded.geometry.normals.empty());
+}
+
+TEST_CASE("lenient as Blender and trimesh: a bare usemtl gives the default material with one warning, --strict refuses")
+{
+    const obj_outcome lenient = load_obj_text("usemtl\n" + triangle_obj);
+    REQUIRE(lenient.error.empty());
+    CHECK(lenient.loaded.geometry.triangles.size() == 1);
+    CHECK(lenient.loaded.geometry.face_materials.empty()); // the default material
+    CHECK(lenient.warnings == "m.obj:1:1: warning: expected a material name after usemtl, found none; its faces get "
+                              "the default material; name a material or delete the line\n");
+    const obj_outcome strict = load_obj_text("usemtl  \n" + triangle_obj, "", true);
+    CHECK(starts_with(strict.error, "m.obj:1:1: expected a material name after usemtl, found none"));
 }
 
 TEST_CASE("range: coordinates beyond 1e18 are refused at load, 1e18 loads")

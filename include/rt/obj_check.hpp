@@ -49,8 +49,9 @@ struct obj_limits {
     /// hits a triangle 1e18 across, none 1e19 across).
     double max_coordinate = 1e18;
     /// What loading can do without (a missing material library, usemtl
-    /// without mtllib or of an unknown name, a face that is not a simple
-    /// polygon) is one warning line each, or with `strict` (--strict) an error.
+    /// without mtllib, of an unknown name or of none, a face that is not a
+    /// simple polygon, a corner "v/vt/" with an empty normal slot) is one
+    /// warning line each, or with `strict` (--strict) an error.
     bool strict = false;
     /// Where the warnings go, one line each "file:line:col: warning: ...";
     /// null: std::cerr.
@@ -64,7 +65,7 @@ namespace detail {
 /// many more there were, when the file has loaded (flush).
 class obj_warnings {
 public:
-    enum kind { missing_library, no_library, unknown_material, not_simple, kinds };
+    enum kind { missing_library, no_library, unknown_material, not_simple, empty_normal, unnamed_material, kinds };
 
     explicit obj_warnings(const obj_limits& limits) : limits_(limits) {}
 
@@ -168,6 +169,13 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             while (!line.done()) {
                 const obj_line::corner c = line.face_corner();
                 ++corners;
+                if (c.empty_normal) {
+                    warnings.add(obj_warnings::empty_normal, line.at(c.empty_normal),
+                                 "v/vt/vn or v/vt, a normal index after the second '/'", "nothing after it",
+                                 "read as v/vt, as Blender reads it; delete the last '/'");
+                    // tinyobjloader refuses "1/2/": it reads this line with "1/2 "
+                    normalised[normalised.size() - 1 - line.size() + line.offset_of(c.empty_normal)] = ' ';
+                }
                 for (int k = 0; k < 3; ++k) {
                     const long index = c.index[k];
                     if (index < 0 && long(defined[k]) + index < 0)
@@ -251,8 +259,11 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 read_mtl(library, at, limits.max_bytes, materials);
             }
         } else if (keyword == "usemtl") {
-            if (line.done())
-                throw line.unexpected("a material name after usemtl");
+            if (line.done()) { // tinyobjloader, Blender and trimesh read it as the default material
+                warnings.add(obj_warnings::unnamed_material, keyword_at, "a material name after usemtl", "none",
+                             "its faces get the default material; name a material or delete the line");
+                return;
+            }
             const source_location at = line.here();
             const std::string wanted = line.word();
             const bool declared = std::any_of(materials.begin(), materials.end(),

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -176,10 +177,19 @@ public:
 
     /// One face corner "v", "v/vt", "v//vn" or "v/vt/vn": three indices as
     /// written (0: absent) and where each starts in the line (for at()).
+    /// "v/vt/", an empty normal slot after the last '/', is read as "v/vt", as
+    /// Blender and trimesh read it: `empty_normal` is that '/' (else null), for
+    /// a warning, and so that tinyobjloader, which refuses it, is given "v/vt".
     struct corner {
         long index[3] = {0, 0, 0};
         const char* start[3] = {nullptr, nullptr, nullptr};
+        const char* empty_normal = nullptr;
     };
+
+    /// Where `p`, a place in this line, is from the line's start (in the
+    /// normalised text the check hands to tinyobjloader).
+    std::size_t offset_of(const char* p) const { return std::size_t(p - begin_); }
+    std::size_t size() const { return std::size_t(end_ - begin_); }
 
     corner face_corner()
     {
@@ -203,8 +213,11 @@ public:
                                       "'" + printable(std::string(p, slash), 24) + "'", hint);
             } else if (part == 0) {
                 throw parse_error(at(p), "a vertex index", "'" + printable(std::string(p, stop), 24) + "'", hint);
+            } else if (slash == stop && part == 2 && c.index[1] != 0) {
+                c.empty_normal = p - 1; // "1/2/": read as "1/2"
+                break;
             } else if (slash == stop) {
-                // "1/" or "1//" or "1/2/": a '/' promises an index after it
+                // "1/" or "1//": a '/' promises an index after it
                 throw parse_error(at(p), part == 1 ? "a texture coordinate index after '/'" : "a normal index after the second '/'",
                                   "the end of the corner '" + printable(std::string(next_, stop), 24) + "'", hint);
             }

@@ -36,8 +36,10 @@
 // "file:line:col: warning: expected ..., found ... (and N more like it); hint"
 // on obj_limits::warnings (std::cerr), and an error with obj_limits::strict
 // (the programs' --strict): a material library that does not exist (its
-// materials: the default material), usemtl without mtllib or of a name no
-// library declares (the default material), a face that is not simple.
+// materials: the default material), usemtl without mtllib, of a name no
+// library declares or of no name (the default material), a face that is not
+// simple, a corner "v/vt/" whose normal slot is empty (read as "v/vt"; the two
+// last appear in files that Blender and trimesh load).
 //
 // The check also keeps tinyobjloader (2.0.0rc10) away from what it cannot
 // read safely (docs/reliability.md, "Decisions"): every number, also in the
