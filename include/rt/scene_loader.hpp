@@ -269,9 +269,20 @@ private:
     {
         const source_location where = line.here();
         triangle tri;
-        tri.a = line.vector("corner a");
-        tri.b = line.vector("corner b");
-        tri.c = line.vector("corner c");
+        vec3* corners[3] = {&tri.a, &tri.b, &tri.c};
+        for (int k = 0; k < 3; ++k) {
+            const source_location at = line.here();
+            *corners[k] = line.vector(std::string("corner ") + "abc"[k]);
+            // the OBJ reader's limit: beyond it the triangle tests' products
+            // overflow float and every ray misses the triangle
+            const vec3& p = *corners[k];
+            const real largest = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+            if (!(double(largest) <= options_.obj.max_coordinate))
+                throw parse_error(at, std::string("a corner ") + "abc"[k] + " within +-" +
+                                          detail::short_number(options_.obj.max_coordinate),
+                                  "a coordinate of " + detail::short_number(double(largest)),
+                                  "float arithmetic cannot trace coordinates that large; use smaller units");
+        }
         if (triangle_normal(tri.a, tri.b, tri.c) == vec3(0)) // the library's normal (triangle_shape.hpp)
             throw parse_error(where, "a triangle with non-zero area", "three corners on one line",
                               "check the corners");
