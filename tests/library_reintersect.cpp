@@ -94,6 +94,12 @@ TEST_CASE("pbrt's reintersection test on triangles from 1e-8 to 1e8: shadow and 
     CHECK_MESSAGE(result.non_finite_normals == 0, "expected a finite geometric normal at every hit");
     CHECK_MESSAGE(result.hits > shapes * 9 / 10, "expected most primary rays to hit the triangle they aim at");
     check_robust_rows(result.rows);
+    // offset_ray_origin (Ray Tracing Gems ch. 6) is a compared method, not the
+    // library's: it fails here in float, as offset.hpp and the stage-06 page say
+    if (in_float && shapes == 1000 && rays == 1000)
+        CHECK_MESSAGE(result.rows[rt_test::reintersect::rtg_to_point].failures > 0,
+                      "expected the Ray Tracing Gems offset to re-hit float triangles (3,857 of 984,000 when "
+                      "measured); if it no longer does, offset.hpp and docs/stages/06-going-further.md say otherwise");
 }
 
 TEST_CASE("pbrt's reintersection test on spheres from 1e-8 to 1e8: rays leaving a sphere never hit it again")
@@ -106,6 +112,13 @@ TEST_CASE("pbrt's reintersection test on spheres from 1e-8 to 1e8: rays leaving 
     CHECK_MESSAGE(result.non_finite_normals == 0, "expected a finite geometric normal at every hit");
     CHECK_MESSAGE(result.hits > (shapes - result.refused) / 2, "expected most primary rays to hit the sphere they aim at");
     check_robust_rows(result.rows);
+    // in double, offset_ray_origin's near-zero offset (2^-45, scaled down from
+    // float's 2^-16) is below the error of hit points on small spheres near the
+    // origin: the compared method fails there, spawn_ray does not
+    if (!in_float && shapes == 1000 && rays == 1000)
+        CHECK_MESSAGE(result.rows[rt_test::reintersect::rtg_front].failures > 0,
+                      "expected the Ray Tracing Gems offset to re-hit spheres in double (7,448 of 417,849 when "
+                      "measured); if it no longer does, offset.hpp and docs/stages/06-going-further.md say otherwise");
 }
 
 TEST_CASE("mixed magnitudes: the Ray Tracing Gems offset leaves rays behind the surface, spawn_ray does not")

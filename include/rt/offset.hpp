@@ -1,22 +1,32 @@
-// offset.hpp - where a secondary ray starts, so it does not hit its own surface (stage 06).
+// offset.hpp - a compared method, not the library's: where a secondary ray
+// starts, so that it does not hit its own surface, by Wachter and Binder's
+// offset (stage 06 compares it; read it after the stage).
 //
 // A hit point computed in floating point lies a little above or below the true
 // surface. A shadow or reflection ray started exactly there may hit the surface
-// it starts on ("shadow acne"). Two cures:
+// it starts on ("shadow acne"). Three answers, compared on
+// docs/stages/06-going-further.md with pbrt-v4's reintersection test
+// (tests/library_reintersect.cpp prints and asserts the counts):
 //
 // * the fixed epsilon of the textbook (Fundamentals of Computer Graphics, 4th
-//   ed., sec. 4.7): start at p + eps n, or search t in [eps, ...). One eps cannot
-//   fit every scale: too small far from the origin (the error of p grows with
-//   |p|), too large for small objects (shadows detach, light leaks).
+//   ed., sec. 4.7; shadows_fixed_epsilon.hpp): one eps cannot fit every scale.
 //
-// * Wachter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection",
-//   Ray Tracing Gems (2019), ch. 6: move p along the geometric normal by a fixed
-//   number of units in the last place of each coordinate (integer arithmetic on
-//   the float's bits), which scales with the coordinate's own rounding error;
-//   near zero, where ulps vanish, add a tiny fixed offset instead. Their constants
-//   for float: 256 ulps, and below |p| = 1/32 an offset of 1/65536 n.
-//   This assumes p itself is as accurate as the surface allows: rt computes mesh
-//   hit points from barycentrics and re-projects sphere hits onto the sphere.
+// * this header: Wachter and Binder, "A Fast and Robust Method for Avoiding
+//   Self-Intersection", Ray Tracing Gems (2019), ch. 6: move p along the
+//   geometric normal by a fixed number of units in the last place of each
+//   coordinate (integer arithmetic on the float's bits), which scales with the
+//   coordinate's own rounding error; near zero, where ulps vanish, add a tiny
+//   fixed offset instead. Their constants for float: 256 ulps, and below
+//   |p| = 1/32 an offset of 1/65536 n. It assumes p is as accurate as the
+//   surface allows, and it fails where that does not hold: a coordinate much
+//   smaller than the others (it moves each by its own ulps), long thin float
+//   triangles, and in double small spheres near the origin, where the
+//   near-zero offset scaled down for double is below the hit point's error.
+//
+// * what the library uses: spawn_ray and spawn_ray_to (spawn.hpp, PBR 3rd ed.,
+//   sec. 3.9.5), which move past the hit point's own error bound
+//   (hit_record::point_error) and pass the same test with no re-hit in float
+//   and double.
 #pragma once
 
 #include <cmath>
