@@ -1,8 +1,16 @@
 #!/usr/bin/env python3
-"""Holds include/rt to the layer table of docs/architecture.md.
+"""Holds the code to what docs/architecture.md, bvh/bvh.hpp and the README say of it.
 
-Every header under include/rt belongs to exactly one group of the table, and
-includes (with #include "...") only headers of the groups its row allows.
+- Every header under include/rt belongs to exactly one group of the layer
+  table, and includes (with #include "...") only headers of the groups its row
+  allows.
+- The teaching path of docs/architecture.md names, with its stage, every
+  header that holds an exercise region (RT_EXERCISE_BEGIN(stageNN: ...)), and
+  no other.
+- The folder map at the top of include/rt/bvh/bvh.hpp lists every file of
+  include/rt/bvh, and only those.
+- The README's "For developers" paragraph names every preset .ci/run runs,
+  and .ci/run runs every preset the paragraph names.
 Usage: check_architecture.py REPO_ROOT. Prints one line per problem, exits 1.
 """
 import pathlib
@@ -61,10 +69,91 @@ def main() -> int:
     listed = set(group_of) - {p.relative_to(include).with_suffix("").as_posix() for p in headers}
     for h in sorted(listed):
         problems.append(f"{page}: the table lists '{h}', which is no header under include/rt")
+    problems += teaching_path(root) + bvh_map(root) + ci_claims(root)
     for p in problems:
         print(p)
-    print(f"{len(headers)} headers in {len(allowed)} groups, {len(problems)} problem(s)")
+    print(f"{len(headers)} headers in {len(allowed)} groups; the teaching path, the bvh map and the CI "
+          f"claims checked; {len(problems)} problem(s)")
     return 1 if problems else 0
+
+
+def teaching_path(root: pathlib.Path) -> list:
+    """The teaching path's headers and stages against the exercise markers."""
+    page = root / "docs" / "architecture.md"
+    text = page.read_text(encoding="utf-8")
+    m = re.search(r"^- \*\*The teaching path\*\*(.*?)(?=^- \*\*|^#)", text, re.S | re.M)
+    if not m:
+        return [f"{page}: expected a bullet '- **The teaching path**' listing the exercise headers, found none"]
+    listed = {}
+    pending = []
+    for token in re.finditer(r"`([\w/]+\.hpp)`|\((\d\d)\)", m.group(1)):
+        if token.group(1):
+            pending.append(token.group(1))
+        else:
+            for header in pending:
+                listed.setdefault(header, set()).add(int(token.group(2)))
+            pending = []
+    marked = {}
+    include = root / "include" / "rt"
+    for path in sorted(include.rglob("*.hpp")):
+        for stage in re.findall(r"RT_EXERCISE_BEGIN\(stage(\d\d)", path.read_text(encoding="utf-8")):
+            marked.setdefault(path.relative_to(include).as_posix(), set()).add(int(stage))
+    problems = []
+    for header, stages in sorted(marked.items()):
+        if listed.get(header) != stages:
+            problems.append(f"{page}: expected the teaching path to list `{header}` with stage(s) "
+                            f"{', '.join(f'{s:02d}' for s in sorted(stages))} (its exercise markers), found "
+                            + (f"stage(s) {', '.join(f'{s:02d}' for s in sorted(listed[header]))}" if header in listed
+                               else "it missing"))
+    for header in sorted(set(listed) - set(marked)):
+        problems.append(f"{page}: the teaching path lists `{header}`, which holds no exercise region; "
+                        f"move it to the robust and fast path or drop it")
+    return problems
+
+
+def bvh_map(root: pathlib.Path) -> list:
+    """The folder map at the top of bvh/bvh.hpp against the folder."""
+    path = root / "include" / "rt" / "bvh" / "bvh.hpp"
+    lines = path.read_text(encoding="utf-8").splitlines()
+    start = next((i for i, l in enumerate(lines) if l.startswith("// The folder,")), None)
+    if start is None:
+        return [f"{path}: expected the folder map ('// The folder, ...') at the top, found none"]
+    mapped = []
+    for line in lines[start + 1:]:
+        m = re.match(r"//\s+(\w+\.hpp)\s", line + " ")
+        if not m:
+            break
+        mapped.append(m.group(1))
+    files = sorted(p.name for p in path.parent.glob("*.hpp"))
+    problems = [f"{path}: expected the folder map to list {name}, a file of include/rt/bvh, found it missing"
+                for name in files if name not in mapped]
+    problems += [f"{path}: the folder map lists {name}, which is no file of include/rt/bvh"
+                 for name in mapped if name not in files]
+    return problems
+
+
+def ci_claims(root: pathlib.Path) -> list:
+    """The presets the README says CI runs against those .ci/run runs."""
+    readme = root / "README.md"
+    ci = root / ".ci" / "run"
+    text = readme.read_text(encoding="utf-8")
+    m = re.search(r"^## For developers\n(.*?)(?:\n\n|\Z)", text, re.S | re.M)
+    if not m:
+        return [f"{readme}: expected a '## For developers' section saying what CI runs, found none"]
+    presets = {p["name"] for p in __import__("json").loads((root / "CMakePresets.json").read_text(encoding="utf-8"))
+               .get("configurePresets", [])}
+    claimed = set()
+    for code in re.findall(r"`([^`]+)`", m.group(1)):
+        claimed.update(re.findall(r"--preset\s+([\w-]+)", code))
+        if code in presets:
+            claimed.add(code)
+    run = ci.read_text(encoding="utf-8")
+    used = set(re.findall(r"^\s*cmake\b[^\n]*?--preset\s+([\w-]+)", run, re.M))
+    problems = [f"{readme}: expected the 'For developers' paragraph to name the `{p}` preset, which .ci/run runs, "
+                f"found it missing" for p in sorted(used - claimed)]
+    problems += [f"{readme}: the 'For developers' paragraph says CI runs the `{p}` preset, which .ci/run does not run"
+                 for p in sorted(claimed - used)]
+    return problems
 
 
 if __name__ == "__main__":

@@ -8,6 +8,9 @@
 // same hits (replaces(): a smaller t wins, at an equal t the later primitive).
 //
 // The folder, one concept per header, in the order a build and a ray use them:
+//   abi_begin.hpp       which fast path this unit compiles, and its inline namespace
+//   simd_begin.hpp      that, with the intrinsics it allows (opens a SIMD section)
+//   simd_end.hpp        the section closed: no fast-path macro reaches an includer
 //   packed.hpp          a primitive as traversal reads it; the flat list
 //   layout.hpp          wide nodes (8 children with AVX2, else 4), leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
