@@ -44,6 +44,45 @@ rt::camera looking_down_minus_z(rt::projection kind)
     return cam;
 }
 
+/// The film position (x, y), in pixels from the bottom-left corner, that ray r
+/// of `gen` went through: the window point u, v it passes (the origin's offset
+/// for an orthographic ray, the direction scaled to reach the image plane at
+/// distance d for a perspective one) turned back through eq. 4.1.
+rt::vec2 film_position(const rt::ray_generator& gen, const rt::ray& r)
+{
+    rt::vec3 offset = r.origin - gen.e;
+    if (gen.kind == rt::projection::perspective)
+        offset = (gen.d / -glm::dot(r.direction, gen.basis.w)) * r.direction;
+    const double u = double(glm::dot(offset, gen.basis.u)), v = double(glm::dot(offset, gen.basis.v));
+    const rt::window& p = gen.plane;
+    return rt::vec2(rt::real((u - p.l) / (p.r - p.l) * gen.nx), rt::real((v - p.b) / (p.t - p.b) * gen.ny));
+}
+
+/// What a wrong ray says about the mistake, for a case's message: the film
+/// position it went through, when it should go through (x, y), and the
+/// likeliest cause of that position.
+std::string film_hint(const rt::ray_generator& gen, const rt::ray& r, double x, double y)
+{
+    const rt::vec2 found = film_position(gen, r);
+    const double dx = double(found.x) - x, dy = double(found.y) - y;
+    if (!std::isfinite(dx) || !std::isfinite(dy))
+        return "";
+    auto near = [](double a, double b) { return std::fabs(a - b) < 1e-3; };
+    auto half = [&](double shift) { return near(std::fabs(shift), 0.5) || near(shift, 0); };
+    std::ostringstream out;
+    out << "; found the ray through the film position " << rt_doctest::text(found) << " instead of ("
+        << x << ", " << y << ")";
+    if (half(dx) && half(dy) && !(near(dx, 0) && near(dy, 0)))
+        out << ", half a pixel off: a half-pixel shift. generate_ray(gen, x, y) takes the film position as it is, "
+               "u = l + (r - l) x / nx, v = b + (t - b) y / ny; pixel_ray(gen, i, j) already passes the pixel's "
+               "centre (i + 0.5, j + 0.5), so adding (or taking away) 0.5 in generate_ray moves every ray by half "
+               "a pixel";
+    else if (near(dx, 0) && near(double(found.y), gen.ny - y))
+        out << ", (x, ny - y): rows counted from the top; the book counts y from the bottom row, "
+               "v = b + (t - b) y / ny";
+    return out.str();
+}
+
 } // namespace
 
 TEST_CASE("the frame is orthonormal and right-handed, with w pointing away from the view")
@@ -107,6 +146,31 @@ TEST_CASE("field of view to window keeps the aspect ratio")
     CHECK((tall.r - tall.l) / (tall.t - tall.b) == doctest::Approx(90.0 / 160.0));
 }
 
+TEST_CASE("generate_ray takes the film position as it is: (0, 0) is the window's corner (l, b), (nx, ny) the corner (r, t)")
+{
+    // Eq. 4.1 with the film position (x, y) itself: u = l + (r - l) x / nx,
+    // v = b + (t - b) y / ny. The 4 x 2 image over the window [-2, 2] x [-1, 1]
+    // (orthographic, so the ray starts at the window point): (0, 0) is the corner
+    // (-2, -1), (4, 2) the corner (2, 1), (1, 0.5) the point (-1, -0.5). The half
+    // pixel to a pixel's centre is pixel_ray's (given), not generate_ray's.
+    const rt::ray_generator gen = rt::make_ray_generator(looking_down_minus_z(rt::projection::orthographic), 4, 2);
+    const struct {
+        rt::real x, y;
+        rt::vec3 origin;
+        const char* what;
+    } points[] = {{0, 0, {-2, -1, 0}, "the film's bottom-left corner"},
+                  {4, 2, {2, 1, 0}, "the film's top-right corner"},
+                  {1, 0.5f, {-1, -0.5f, 0}, "a point inside the film"}};
+    for (const auto& point : points) {
+        const rt::ray r = rt::generate_ray(gen, point.x, point.y);
+        INFO("generate_ray(gen, " << point.x << ", " << point.y << "), " << std::string(point.what)
+             << ": expected the ray from " << rt_doctest::text(point.origin)
+             << " (u = l + (r - l) x / nx, v = b + (t - b) y / ny, FCG 4th ed., eq. 4.1 and sec. 4.3.1)"
+             << film_hint(gen, r, double(point.x), double(point.y)));
+        check_near(r.origin, point.origin);
+    }
+}
+
 TEST_CASE("orthographic rays of pixel (0,0), the centre pixel and the last pixel, by hand")
 {
     // 4 x 2 image, window [-2, 2] x [-1, 1]: pixel (i, j) centre is at
@@ -115,13 +179,14 @@ TEST_CASE("orthographic rays of pixel (0,0), the centre pixel and the last pixel
     {
         const rt::ray first = rt::pixel_ray(gen, 0, 0);
         INFO("pixel (0, 0) is the bottom-left pixel: x counts columns from the left, y rows from the bottom "
-             "(FCG 4th ed., sec. 4.3.1), so its ray starts at u = -1.5, v = -0.5; v = +0.5 means rows counted from the top");
+             "(FCG 4th ed., sec. 4.3.1), so its ray starts at u = -1.5, v = -0.5" << film_hint(gen, first, 0.5, 0.5));
         check_near(first.origin, {-1.5, -0.5, 0});
         check_near(first.direction, {0, 0, -1});
     }
     {
         const rt::ray last = rt::pixel_ray(gen, 3, 1);
-        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its ray starts at u = 1.5, v = 0.5");
+        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its ray starts at u = 1.5, v = 0.5"
+             << film_hint(gen, last, 3.5, 1.5));
         check_near(last.origin, {1.5, 0.5, 0});
         check_near(last.direction, {0, 0, -1});
     }
@@ -137,13 +202,14 @@ TEST_CASE("perspective rays of pixel (0,0), the centre pixel and the last pixel,
     {
         const rt::ray first = rt::pixel_ray(gen, 0, 0);
         INFO("pixel (0, 0) is the bottom-left pixel (rows counted from the bottom): its ray starts at the eye with "
-             "direction (-1.5, -0.5, -1), not normalised (d = -d w + u u + v v)");
+             "direction (-1.5, -0.5, -1), not normalised (d = -d w + u u + v v)" << film_hint(gen, first, 0.5, 0.5));
         check_near(first.origin, {0, 0, 0});
         check_near(first.direction, {-1.5, -0.5, -1});
     }
     {
         const rt::ray last = rt::pixel_ray(gen, 3, 1);
-        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its direction is (1.5, 0.5, -1)");
+        INFO("pixel (3, 1) is the top-right pixel (rows counted from the bottom): its direction is (1.5, 0.5, -1)"
+             << film_hint(gen, last, 3.5, 1.5));
         check_near(last.direction, {1.5, 0.5, -1});
     }
     const rt::ray centre = rt::generate_ray(gen, 2, 1);

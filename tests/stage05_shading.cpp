@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include <rt/hit_record.hpp>
 #include <rt/scene.hpp>
@@ -65,6 +66,37 @@ TEST_CASE("blinn_phong where h = n: the highlight is ks I exactly, so h = (v + l
     INFO("n = h: n.h = 1, so the specular term is ks I = (0.4, 0.36, 0.32), and the diffuse term kd I n.l"
          << hint.str());
     check_color(L, red, 0.5 * 0.9 * nl + 0.4 * 0.9, 0.3 * 0.8 * nl + 0.4 * 0.8, 1e-5);
+}
+
+TEST_CASE("blinn_phong: the highlight is (n.h)^p with the half vector h, not Phong's (R.v)^p")
+{
+    // Specular only (kd = 0, ks = 1, I = 1), n = v = +z and a light 60 degrees
+    // from n: h = (v + l) / |v + l| lies halfway, 30 degrees from n, so n.h =
+    // cos 30 degrees = 0.866 (FCG 4th ed., sec. 4.5.3). Phong's mirror direction
+    // R = 2 (n.l) n - l lies 60 degrees from v on the other side: R.v = cos 60
+    // degrees = 0.5. The two models agree only where h = n (R = v).
+    rt::material m;
+    m.kd = rt::color(0.0f);
+    m.ks = rt::color(1.0f);
+    const rt::vec3 n(0, 0, 1), v(0, 0, 1);
+    const rt::vec3 l(std::sqrt(rt::real(3)) / 2, 0, rt::real(0.5));
+    const double nh = std::sqrt(3.0) / 2, rv = 0.5;
+    for (const double p : {1.0, 10.0}) {
+        m.p = rt::real(p);
+        const double found = double(rt::blinn_phong(m, n, v, l, rt::color(1.0f)).r);
+        const double blinn = std::pow(nh, p), phong = std::pow(rv, p);
+        CAPTURE(p);
+        std::ostringstream hint;
+        if (std::abs(found - phong) < 1e-4)
+            hint << ": the highlight follows Phong's R.v (R = 2 (n.l) n - l, R.v = 0.5 here), expected "
+                    "Blinn-Phong's n.h with h = normalize(l + v)";
+        else if (std::abs(found - nh) < 1e-4 && p != 1)
+            hint << ": that is n.h without the exponent p";
+        INFO("specular only, n = v = +z, l 60 degrees from n: h = normalize(l + v) is 30 degrees from n, so the "
+             "highlight is ks I (n.h)^p = cos(30 degrees)^"
+             << p << " = " << blinn << ", found " << found << hint.str());
+        CHECK(found == doctest::Approx(blinn).epsilon(1e-5));
+    }
 }
 
 TEST_CASE("one sphere, one directional light, orthographic view: pixels equal the formula by hand")
@@ -195,9 +227,17 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
         m.p = 3;
         const rt::vec3 light = glm::normalize(rt::vec3(1, rt::real(0.2), 0));
         const rt::vec3 viewer = glm::normalize(rt::vec3(-1, -1, 0));
+        const rt::color found = rt::blinn_phong(m, n, viewer, light, rt::color(1.0f));
+        // Phong's mirror direction R = 2 (n.l) n - l is 56 degrees from the viewer here: R.v = 0.55 > 0
+        const rt::vec3 R = 2 * glm::dot(n, light) * n - light;
+        const double phong = 0.5 * std::pow(double(glm::dot(R, viewer)), 3);
+        const bool follows_phong = std::abs(double(found.r) - phong) < 1e-4;
         INFO("specular only, n.l = " << double(glm::dot(n, light)) << " > 0 but n.h = "
-             << double(glm::dot(n, glm::normalize(light + viewer))) << " < 0: clamp n.h at 0, max(0, n.h)^p");
-        check_color(rt::blinn_phong(m, n, viewer, light, rt::color(1.0f)), 0, 0, 0);
+             << double(glm::dot(n, glm::normalize(light + viewer))) << " < 0: "
+             << std::string(follows_phong ? "found ks (R.v)^p: the highlight follows Phong's R.v, expected "
+                                            "Blinn-Phong's n.h with h = normalize(l + v)"
+                                          : "clamp n.h at 0, max(0, n.h)^p"));
+        check_color(found, 0, 0, 0);
     }
     // a light below the surface: n.l < 0 clamps the diffuse term to 0
     m.kd = rt::color(1.0f);

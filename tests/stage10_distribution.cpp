@@ -195,7 +195,7 @@ TEST_CASE("thin_lens_ray: each ray starts on the lens disk and meets its pinhole
     const rt::frame basis = turned_frame(0.4, 0.25);
     const rt::real aperture = rt::real(0.25), focus = 6;
     uniform u;
-    problems off;
+    problems off_lens, off_focus;
     for (int k = 0; k < 400; ++k) {
         // pinhole rays through a spread of the film (direction -d w + u u + v v)
         // one draw per statement, so that every compiler draws in the same order
@@ -212,16 +212,32 @@ TEST_CASE("thin_lens_ray: each ray starts on the lens disk and meets its pinhole
         const rt::real t = (focus + glm::dot(r.origin - e, basis.w)) / along;
         const rt::vec3 met = r.origin + t * r.direction;
         const rt::vec3 start = r.origin - e;
+        const rt::vec3 on_the_lens = e + aperture * (lens.x * basis.u + lens.y * basis.v);
         const bool on_lens = std::fabs(double(glm::dot(start, basis.w))) < 1e-5 &&
                              std::fabs(double(glm::length(start)) - double(aperture * glm::length(lens))) < 1e-5;
-        if (!on_lens || !(along > 0) || double(glm::length(met - sharp)) > 1e-4 * focus)
-            off.add([&](std::ostream& o) { o << "the lens point " << rt_doctest::text(lens) << " gave the ray from " << rt_doctest::text(r.origin)
-                                      << " along " << rt_doctest::text(r.direction) << ": it meets the plane in focus at "
-                                      << rt_doctest::text(met) << " where the pinhole ray meets it at "
-                                      << rt_doctest::text(sharp); });
+        if (!on_lens)
+            off_lens.add([&](std::ostream& o) {
+                o << "the lens point " << rt_doctest::text(lens) << " gave the ray from " << rt_doctest::text(r.origin);
+                if (double(glm::length(start)) < 1e-6 && double(glm::length(lens)) > 1e-3)
+                    o << ", the pinhole e itself";
+                o << ", expected it to start on the lens at e + aperture (lens.x u + lens.y v) = "
+                  << rt_doctest::text(on_the_lens);
+            });
+        else if (!(along > 0) || double(glm::length(met - sharp)) > 1e-4 * focus)
+            off_focus.add([&](std::ostream& o) {
+                o << "the lens point " << rt_doctest::text(lens) << " gave the ray from " << rt_doctest::text(r.origin)
+                  << " along " << rt_doctest::text(r.direction) << ": it meets the plane in focus at "
+                  << rt_doctest::text(met) << " where the pinhole ray meets it at " << rt_doctest::text(sharp);
+            });
     }
-    check_none(off, "expected the ray from e + aperture (lens.x u + lens.y v) towards the point where the pinhole ray "
-                    "meets the plane at distance focus along -w");
+    {
+        INFO(off_lens.count << " of 400 rays start off the lens; the first: " << off_lens.first
+                            << "; every thin-lens ray starts at a point of the lens disk, not at the pinhole e: a ray "
+                               "from e towards the point in focus is the pinhole ray again, and nothing blurs");
+        CHECK(off_lens.count == 0);
+    }
+    check_none(off_focus, "expected the ray from e + aperture (lens.x u + lens.y v) towards the point where the "
+                          "pinhole ray meets the plane at distance focus along -w");
 }
 
 TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confusion, radius aperture |1 - z / focus|")
@@ -246,8 +262,13 @@ TEST_CASE("thin_lens_ray: at distance z a point spreads into the circle of confu
             const double want = double(aperture) * std::fabs(1 - z / double(focus)) * double(glm::length(lens));
             widest = std::max(widest, double(glm::length(spot)) / (double(aperture) * std::fabs(1 - z / double(focus))));
             if (std::fabs(double(glm::length(spot)) - want) > 1e-4)
-                off.add([&](std::ostream& o) { o << "the lens point " << rt_doctest::text(lens) << " at depth " << z << " lands "
-                                          << glm::length(spot) << " from the pinhole ray, not " << want; });
+                off.add([&](std::ostream& o) {
+                    o << "the lens point " << rt_doctest::text(lens) << " at depth " << z << " lands "
+                      << glm::length(spot) << " from the pinhole ray, not " << want;
+                    if (double(glm::length(r.origin)) < 1e-6)
+                        o << " (the ray starts at the pinhole e = (0, 0, 0), not on the lens, so it follows the "
+                             "pinhole ray and never spreads)";
+                });
         }
     }
     check_none(off, "expected the circle of confusion aperture |lens| |1 - z / focus|: a sharp plane in focus, blur "

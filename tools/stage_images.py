@@ -93,7 +93,7 @@ NO_OFFSET_09 = Plant("include/rt/dielectric.hpp",
 IMAGES: Tuple[Render, ...] = (
     Render("stage02_generate_rays", ("scenes/showcase.scene", "-o", "02-rays-perspective.png"),
            ("02-rays-perspective.png",)),
-    # "Zoomed in 8 times (48 x 32 pixels around the image centre)": the showcase is 640 x 360
+    # the page shows the middle 48 x 32 pixels of the 640 x 360 showcase, magnified 8 times
     Render("stage02_generate_rays", ("scenes/showcase.scene", "-o", "rays.png", "--edge", "02-edge"),
            ("02-edge-1.png", "02-edge-16.png"), zoom=(296, 164, 48, 32, 8)),
     Render("stage02_generate_rays", ("scenes/showcase.scene", "-o", "02-rays-orthographic.png",

@@ -15,8 +15,9 @@
 //    the first half of the items to the left child, the rest to the right.
 //  - closest_hit_groups (exercise): a ray tests a node's box (hit_box_robust,
 //    slab.hpp) and only then its children; the nearer child first, and a
-//    child whose box starts beyond the closest hit so far is skipped
-//    (PBR 3rd ed., sec. 4.3.5, front-to-back traversal).
+//    child whose box starts beyond the closest hit so far (by more than the
+//    slab test's rounding margin) is skipped (PBR 3rd ed., sec. 4.3.5,
+//    front-to-back traversal).
 // The result is the list's (closest_hit_list), hit for hit, ties included: at
 // an equal t the item later in scene order wins.
 //
@@ -194,13 +195,19 @@ inline groups build_groups(std::vector<group_item> items, std::size_t leaf_size 
 /// record (hit_group_item with the scene, say). A node's box is tested with
 /// hit_box_robust before anything under it; the nearer child is visited
 /// first, and a child whose box starts beyond the closest hit so far is not
-/// visited at all. On a miss the record is left untouched.
+/// visited at all: beyond by more than rounding, t_enter > closest *
+/// slab_robust_far_factor. (A box's entry and a hit's t are computed by
+/// different formulas, each rounded: where the box's face holds the hit,
+/// equal in exact arithmetic, the entry can come out a little above the hit,
+/// and `t_enter > closest` would skip the box that holds the later item of a
+/// tie.) On a miss the record is left untouched.
 template <class HitItem>
 bool closest_hit_groups(const groups& g, const ray& r, real tmin, real tmax, hit_record& rec, HitItem&& hit_item)
 {
     // RT_EXERCISE_BEGIN(stage04: closest hit over the groups)
     // Hint: a stack of (node, where the ray enters its box); pop, skip it when
-    //   that t is beyond the closest hit so far, push the farther child first.
+    //   that t is beyond the closest hit so far by more than rounding,
+    //   `t_enter > closest * slab_robust_far_factor`; push the farther child first.
     if (g.nodes.empty())
         return false;
     real t_root = 0;
