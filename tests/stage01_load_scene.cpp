@@ -5,10 +5,12 @@
 // what was expected, what was found.
 #include "rt_doctest.hpp"
 
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include <rt/camera_statement.hpp>
 #include <rt/camera_text.hpp>
@@ -184,7 +186,18 @@ TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and 
         {"empty file", "# only a comment\n", "bad.scene:1:1:", "at least one statement"},
         {"binary garbage", "sphere\n\x01\x02garbage\n", "bad.scene:2:1:", "plain text"},
     };
-    for (const bad_case& c : cases) {
+    // the two checks that keep the frame finite where a square overflows float
+    // (in double these cameras load: 1e20 squared fits)
+    const bad_case float_cases[] = {
+        {"an eye 1e20 from look_at", "camera perspective eye 0 0 1e20 look_at 0 0 0 up 0 1 0\n", "bad.scene:1:41:",
+         "an eye within about 1e19 of look_at"},
+        {"an up vector of length 1e20", "camera perspective eye 0 0 5 look_at 0 0 0 up 0 1e20 0\n", "bad.scene:1:47:",
+         "an up vector whose squared length fits rt::real"},
+    };
+    std::vector<bad_case> all(std::begin(cases), std::end(cases));
+    if (sizeof(rt::real) == sizeof(float))
+        all.insert(all.end(), std::begin(float_cases), std::end(float_cases));
+    for (const bad_case& c : all) {
         const std::string name = c.name;
         CAPTURE(name);
         const std::string message = error_of(c.text);
