@@ -273,7 +273,7 @@ def plot_embree(data, charts):
     if os.path.exists(build_path):
         for r in read(build_path)[1]:
             builds[r["mesh"]] = num(r["ratio_rt_over_embree_1_thread"])
-            if r.get("embree_build_seconds_1_thread_high_quality"):  # runs from session 19 on
+            if r.get("embree_build_seconds_1_thread_high_quality"):  # absent from older runs' CSV files
                 against_high[r["mesh"]] = (num(r["rt_build_seconds_1_thread"]) /
                                            num(r["embree_build_seconds_1_thread_high_quality"]))
     fig, axes = plt.subplots(1, 2, figsize=(13, 4.8), gridspec_kw={"width_ratios": [3, 1]})

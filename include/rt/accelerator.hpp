@@ -58,14 +58,7 @@ enum class accelerator_kind {
 };
 
 /// Below this many primitives the flat list is faster than the BVH: the
-/// crossover that bench/groups.cpp measures (docs/performance.md, experiment 4:
-/// random spheres and triangles in the unit cube covering it about twice,
-/// primary rays, one thread, the N where the two log-log curves of ns per ray
-/// cross). With the BVH of four-triangle leaf blocks it measured 4 (3 shapes:
-/// flat 101 ns, BVH 112 ns; 5 shapes: flat 122 ns, BVH 111 ns). The older
-/// `stage04_triangle --crossover` experiment (docs/stages/04-triangle.md)
-/// gave 6 on a different mix; either way the difference is tens of ns per ray
-/// on scenes of a handful of shapes.
+/// crossover that bench/groups.cpp measures (docs/performance.md, experiment 4).
 constexpr std::size_t flat_list_crossover = 4;
 
 /// The names of the accelerator kinds; the first is the default.
@@ -180,7 +173,7 @@ public:
     /// first id is <= id, found by a binary search without branches over the
     /// shapes' first ids (a few cached lines), not by a table of one entry per
     /// primitive, whose random lookup missed the cache on nearly every hit
-    /// (incoherent closest hits on the bunny gained 8%: docs/performance.md).
+    /// (docs/performance.md, experiment 6).
     RT_BVH_INLINE primitive_ref reference(std::uint32_t id) const
     {
         const std::uint32_t* first = first_id_.data();

@@ -11,7 +11,7 @@
 // of four at a time). A node becomes a leaf when that is cheaper than any split
 // and it holds at most max_leaf_size primitives, or at max_depth. At the top
 // of the tree, build_spatial also tries planes that cut primitives
-// (spatial_split.hpp). wide_collapse.hpp then makes the tree 4-wide.
+// (spatial_split.hpp). wide_collapse.hpp then makes the tree bvh_width-wide.
 #pragma once
 
 #include <algorithm>

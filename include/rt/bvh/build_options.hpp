@@ -1,5 +1,5 @@
 // bvh/build_options.hpp - what a BVH build takes and makes: its options, its
-// statistics, and the binary tree the builders write before it is made 4-wide.
+// statistics, and the binary tree the builders write before it is made wide.
 //
 //     rt::bvh_options options;
 //     options.threads = 1;          // the tree is the same for any count
@@ -48,7 +48,7 @@ struct bvh_stats {
     std::size_t primitives = 0;
     std::size_t references = 0;   ///< primitives plus the extra pieces made by spatial splits
     std::size_t spatial_splits = 0; ///< binary nodes split by a plane that cuts primitives
-    std::size_t nodes = 0;        ///< 4-wide nodes
+    std::size_t nodes = 0;        ///< wide nodes (bvh_width children each)
     std::size_t leaves = 0;
     std::size_t binary_nodes = 0; ///< inner nodes of the binary tree before collapsing
     int depth = 0;                ///< the deepest leaf: the root's children are at depth 1

@@ -8,9 +8,9 @@
 // the oldest task offered, which is the largest subtree still waiting
 // (Blumofe, Leiserson, "Scheduling Multithreaded Computations by Work
 // Stealing", JACM 46(5), 1999). So no thread idles while a subtree of any
-// size waits: before, a node decided once, when it split, whether a thread was
-// idle, and a thread that finished early waited for the subtrees the other
-// had already decided to build alone (docs/performance.md, experiment 6).
+// size waits, where a node that chose only when it split whether to fork
+// would leave a thread that finished early waiting for subtrees the other
+// had already taken on alone (docs/performance.md, experiment 6).
 //
 //     rt::detail::build_tasks tasks;
 //     tasks.run(threads, [&] {                  // the root, on one of the threads

@@ -8,9 +8,9 @@
 // b0 a + b1 b + b2 c, its error bound gamma_7 (|b0 a| + |b1 b| + |b2 c|), the
 // stored normal turned to face the ray. Each x, y, z triple is one SSE
 // register here, where the scalar code spent about a hundred instructions on
-// three lanes at a time (closest hits 1-9% faster, docs/performance.md,
-// experiment 6). The same operations in the same order, so the same bits: the
-// tests compare the BVH's records with the flat list's, field for field.
+// three lanes at a time (docs/performance.md, experiment 6). The same
+// operations in the same order, so the same bits: the tests compare the
+// BVH's records with the flat list's, field for field.
 #pragma once
 
 #include "../config.hpp"
