@@ -21,7 +21,7 @@
 // The result is the list's (closest_hit_list), hit for hit, ties included: at
 // an equal t the item later in scene order wins.
 //
-// The library's fast path is a different structure (bvh.hpp: SAH, 4-wide
+// The library's fast path is a different structure (bvh.hpp: SAH, 8- or 4-wide
 // nodes, packed leaves); this one is for reading. No other header includes
 // this one, so editing the exercises rebuilds only stage-04 code.
 #pragma once
