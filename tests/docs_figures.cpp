@@ -13,7 +13,9 @@
 //     page:line: figure NAME: the page says 'X', the code gives 'Y'
 // and the exit code is 1. Names ending in .float or .double hold only for that
 // rt::real and are checked in that build. A figure that needs a student's
-// exercise that is not done yet (a kit) is skipped, and the run says SKIPPED.
+// exercise that is not done yet (a kit) is skipped, and the run says SKIPPED;
+// so is, in a kit, a figure of a textbook method the student has written
+// (tests/textbook_methods.hpp: the pages quote the reference's).
 //
 //     docs_figures REPO_ROOT            (reads REPO_ROOT/docs and REPO_ROOT/scenes)
 //     docs_figures REPO_ROOT --print    (every figure and its value, for pasting)
@@ -418,19 +420,38 @@ void sphere_accuracy_figures(std::map<std::string, figure_function>& all, const 
     for (std::size_t k = 0; k < 6; ++k) {
         const std::string row = "stage03.distance_" + power_of_ten(std::pow(10.0, double(k + 1))) + ".";
         auto at = [distance_rows, k]() -> const rt_test::distance_row& { return distance_rows().at(k); };
-        all[row + "centred" + p] = [at] { return cell(at().centred[0]) + " / " + cell(at().centred[1]); };
-        all[row + "off_centre" + p] = [at] { return cell(at().off_centre[0]) + " / " + cell(at().off_centre[1]); };
-        all[row + "grazing" + p] = [at] { return cell(at().grazing[0]) + " / " + cell(at().grazing[1]); };
-        all[row + "fan_textbook" + p] = [at] { return rt_test::fan_cell(at().fan[0], at().miss_fan[0]); };
+        // a cell of the textbook's (the stage-03 exercise) is skipped in a kit (require_textbook)
+        all[row + "centred" + p] = [at] {
+            rt_test::require_textbook();
+            return cell(at().centred[0]) + " / " + cell(at().centred[1]);
+        };
+        all[row + "off_centre" + p] = [at] {
+            rt_test::require_textbook();
+            return cell(at().off_centre[0]) + " / " + cell(at().off_centre[1]);
+        };
+        all[row + "grazing" + p] = [at] {
+            rt_test::require_textbook();
+            return cell(at().grazing[0]) + " / " + cell(at().grazing[1]);
+        };
+        all[row + "fan_textbook" + p] = [at] {
+            rt_test::require_textbook();
+            return rt_test::fan_cell(at().fan[0], at().miss_fan[0]);
+        };
         all[row + "fan_stable" + p] = [at] { return rt_test::fan_cell(at().fan[1], at().miss_fan[1]); };
-        all[row + "fan_textbook_depth_error" + p] = [at] { return rt_test::depth_cell(at().fan[0].worst_depth_error); };
+        all[row + "fan_textbook_depth_error" + p] = [at] {
+            rt_test::require_textbook();
+            return rt_test::depth_cell(at().fan[0].worst_depth_error);
+        };
     }
     for (std::size_t k = 0; k < 8; ++k) {
         const double R = std::pow(10.0, double(2 + k / 2));
         const std::string row = "stage03.ground_" + power_of_ten(R) + (k % 2 == 0 ? "_h1." : "_h0_25.");
         auto at = [ground_rows, k]() -> const rt_test::ground_row& { return ground_rows().at(k); };
         all[row + "exact_t" + p] = [at] { return rt_test::exact_text(at().exact); };
-        all[row + "textbook" + p] = [at] { return cell(at().result[0]); };
+        all[row + "textbook" + p] = [at] {
+            rt_test::require_textbook();
+            return cell(at().result[0]);
+        };
         all[row + "chapter" + p] = [at] { return cell(at().chapter); };
         all[row + "rt" + p] = [at] { return cell(at().result[1]); };
     }
@@ -679,9 +700,10 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         return std::to_string(
             rt::build_groups(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene"))).nodes.size());
     };
-    // the slab test's failures (library_slab.cpp): the textbook form is the copy in slab_cases.hpp
+    // the slab test's failures (library_slab.cpp): the textbook form is stage 04's hit_box_textbook
     all["stage04.slab.face_plane_rays"] = [] { return std::to_string(rt_test::face_plane_rays().size()); };
     all["stage04.slab.face_plane_rays.textbook_misses"] = [] {
+        rt_test::require_textbook_slab();
         return std::to_string(rt_test::misses(rt_test::face_plane_rays(), rt_test::textbook_hits));
     };
     all["stage04.slab.face_plane_rays.robust_misses"] = [] {
@@ -690,6 +712,7 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage04.slab.edge_rays"] = [] { return std::to_string(rt_test::edge_rays().size()); };
     for (const char* precision : {"float", "double"})
         all["stage04.slab.edge_rays.textbook_misses." + std::string(precision)] = [] {
+            rt_test::require_textbook_slab();
             return std::to_string(rt_test::misses(rt_test::edge_rays(), rt_test::textbook_hits));
         };
     all["stage04.slab.edge_rays.robust_misses"] = [] {
@@ -770,6 +793,9 @@ int main(int argc, char** argv)
         try {
             return &(computed[name] = known.at(name)());
         } catch (const rt::exercise_not_done& e) {
+            skipped.push_back(name + " (" + e.what() + ")");
+            return nullptr;
+        } catch (const rt_test::not_the_reference& e) {
             skipped.push_back(name + " (" + e.what() + ")");
             return nullptr;
         }

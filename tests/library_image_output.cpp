@@ -136,6 +136,34 @@ TEST_CASE("PPM through the pipeline: the header, then the pipeline's bytes, top 
     CHECK(int(std::uint8_t(bytes[header.size()])) == int(255 * (1.055 * std::pow(1.0 / 3, 1 / 2.4) - 0.055) + 0.5));
 }
 
+TEST_CASE("PPM through the pipeline: each of the 256 byte levels is stored as the pipeline gives it")
+{
+    // clamp, a plain gamma of 1 and no exposure store the linear level k / 255 as
+    // the byte k (round(255 k / 255)); the PPM must hold exactly those bytes
+    rt::encoding enc;
+    enc.tonemap = rt::tonemap_kind::clamp;
+    enc.transfer = rt::transfer_kind::gamma;
+    enc.gamma = 1.0f;
+    rt::image img(256, 1);
+    for (int k = 0; k < 256; ++k)
+        img.at(k, 0) = rt::color(float(k) / 255.0f, float(255 - k) / 255.0f, float(k) / 255.0f);
+    std::ostringstream out;
+    rt::write_ppm(out, img, enc);
+    const std::string bytes = out.str();
+    const std::string header = "P6\n256 1\n255\n";
+    REQUIRE(bytes.size() == header.size() + 256 * 3);
+    CHECK(bytes.substr(0, header.size()) == header);
+    const std::vector<std::uint8_t> expected = rt::encode_image(img, enc);
+    for (int k = 0; k < 256; ++k) {
+        CAPTURE(k);
+        for (int channel = 0; channel < 3; ++channel) {
+            const std::size_t at = std::size_t(k) * 3 + std::size_t(channel);
+            CHECK(int(std::uint8_t(bytes[header.size() + at])) == int(expected[at]));
+        }
+        CHECK(int(std::uint8_t(bytes[header.size() + std::size_t(k) * 3])) == k);
+    }
+}
+
 TEST_CASE("save_image with an encoding: .ppm holds the pipeline's bytes, .png is a PNG, .pfm is linear")
 {
     scratch_folder folder("save");

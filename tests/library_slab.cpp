@@ -1,6 +1,7 @@
 // library_slab.cpp - the library's robust slab test, rt::hit_box_robust
-// (include/rt/slab.hpp), against the textbook form (a copy in slab_cases.hpp,
-// never the student's exercise).
+// (include/rt/slab.hpp), against the textbook form: the stage-04 exercise
+// hit_box_textbook, whose failures are asserted in the reference only (in a
+// student kit those cases say SKIPPED, with the reason: slab_cases.hpp).
 //
 // Where the book's form fails and the robust one holds, counted on two
 // families of rays that all meet the closed unit box (slab_cases.hpp):
@@ -45,25 +46,12 @@ TEST_CASE("the robust slab test: axis-parallel rays, rays in a slab plane, -0, f
     CHECK(tnear == 42);
 }
 
-TEST_CASE("rays in a face plane of the box, the textbook slab test misses those in the x planes, the robust one none")
+TEST_CASE("rays in a face plane of the box: the robust slab test misses none and enters where the ray reaches the face")
 {
     const std::vector<rt::ray> rays = rt_test::face_plane_rays();
-    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
-    const std::size_t robust = rt_test::misses(rays, rt_test::robust_hits);
-    MESSAGE(rays.size() << " rays in a face plane: the textbook form misses " << textbook
-                        << ", the robust one " << robust);
     CHECK(rays.size() == 384);
-    // the textbook form: all 128 rays in the planes x = 0 and x = 1 (6 x 8 x 4 x 2 / 3), and no other
-    std::size_t in_x_planes = 0, missed_elsewhere = 0;
-    for (const rt::ray& r : rays) {
-        const bool x_plane = r.direction.x == 0;
-        in_x_planes += x_plane ? 1 : 0;
-        if (!x_plane && !rt_test::textbook_hits(rt_test::unit_box(), r))
-            ++missed_elsewhere;
-    }
-    CHECK(in_x_planes == 128);
-    CHECK(textbook == 128);
-    CHECK(missed_elsewhere == 0);
+    const std::size_t robust = rt_test::misses(rays, rt_test::robust_hits);
+    MESSAGE(rays.size() << " rays in a face plane: the robust slab test misses " << robust);
     CHECK(robust == 0);
     // and the robust one enters where the ray reaches the face: worked out per ray
     // (the face's square [1/4, 3/4]^2 is entered where the in-plane line meets it)
@@ -76,15 +64,50 @@ TEST_CASE("rays in a face plane of the box, the textbook slab test misses those 
     }
 }
 
-TEST_CASE("rays through a box edge, without Ize's factor the textbook slab test culls some in float, the robust one none")
+TEST_CASE("rays in a face plane of the box: the textbook slab test misses exactly those in the x planes")
+{
+    const std::vector<rt::ray> rays = rt_test::face_plane_rays();
+    if (!rt_test::textbook_side_asserted(rt_test::textbook_slab_not_done(), "hit_box_textbook (stage 04)")) {
+        if (rt_test::textbook_slab_not_done().empty())
+            MESSAGE(rays.size() << " rays in a face plane: your hit_box_textbook misses "
+                                << rt_test::misses(rays, rt_test::textbook_hits));
+        return;
+    }
+    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
+    MESSAGE(rays.size() << " rays in a face plane: the textbook form misses " << textbook);
+    // all 128 rays in the planes x = 0 and x = 1 (6 x 8 x 4 x 2 / 3), and no other
+    std::size_t in_x_planes = 0, missed_elsewhere = 0;
+    for (const rt::ray& r : rays) {
+        const bool x_plane = r.direction.x == 0;
+        in_x_planes += x_plane ? 1 : 0;
+        if (!x_plane && !rt_test::textbook_hits(rt_test::unit_box(), r))
+            ++missed_elsewhere;
+    }
+    CHECK(in_x_planes == 128);
+    CHECK(textbook == 128);
+    CHECK(missed_elsewhere == 0);
+}
+
+TEST_CASE("rays through a box edge: with Ize's factor the robust slab test culls none")
 {
     const std::vector<rt::ray> rays = rt_test::edge_rays();
-    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
     const std::size_t robust = rt_test::misses(rays, rt_test::robust_hits);
-    MESSAGE(rays.size() << " rays through the edge x = 1, y = 0: the textbook form culls " << textbook
-                        << ", the robust one " << robust);
+    MESSAGE(rays.size() << " rays through the edge x = 1, y = 0: the robust slab test culls " << robust);
     CHECK(rays.size() == 33635);
     CHECK(robust == 0);
+}
+
+TEST_CASE("rays through a box edge: without Ize's factor the textbook slab test culls some in float")
+{
+    const std::vector<rt::ray> rays = rt_test::edge_rays();
+    if (!rt_test::textbook_side_asserted(rt_test::textbook_slab_not_done(), "hit_box_textbook (stage 04)")) {
+        if (rt_test::textbook_slab_not_done().empty())
+            MESSAGE(rays.size() << " rays through the edge x = 1, y = 0: your hit_box_textbook culls "
+                                << rt_test::misses(rays, rt_test::textbook_hits));
+        return;
+    }
+    const std::size_t textbook = rt_test::misses(rays, rt_test::textbook_hits);
+    MESSAGE(rays.size() << " rays through the edge x = 1, y = 0: the textbook form culls " << textbook);
     if (in_float)
         CHECK(textbook > 0); // in double these rays happen to round the same way on both planes
 }

@@ -8,9 +8,9 @@
 // untouched on a miss, hit points on the sphere, and t within a few dozen
 // ulps of the exact root (long double) for near spheres. A quadratic more
 // accurate than the textbook's always passes; where the textbook formula
-// fails (far spheres in float) is shown on the library's own copy of it
-// (library_sphere_stable.cpp, docs/stages/03-going-further.md), never
-// required of the student's function.
+// fails (far spheres in float) is shown by library_sphere_stable.cpp
+// (docs/stages/03-going-further.md), asserted on the reference's body only,
+// never required of the student's function.
 // Only stage-03 code is called: rays and spheres are built here, not loaded.
 #include "rt_doctest.hpp"
 #include "sphere_contract.hpp"

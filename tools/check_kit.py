@@ -4,8 +4,16 @@
     python3 tools/check_kit.py                 # everything below
     python3 tools/check_kit.py --no-reference  # when CI has built and tested the reference already
     python3 tools/check_kit.py --no-reference --only 7,9   # two per-stage kits, while working on them
+    python3 tools/check_kit.py --leaks                     # the leak check alone (every kit, in memory)
+    python3 tools/check_kit.py --leaks ../rt-week3         # the leak check of kits written to folders
 
 1. The markers are valid (tools/make_kit.py --check).
+1b. No kit make_kit writes (--from-stage N, for every stage N) holds an exercise's answer
+   outside the exercise's own region: for every region of the reference, no text file of
+   the kit holds LEAK_RUN of its distinctive lines in a row (leak_key: comments,
+   whitespace and `rt::` ignored; a line counts when it holds LEAK_WORDS names or numbers,
+   so braces, `else` and `return false;` never do). Each leak is one line
+   "file:line: holds N lines of the answer to stageNN: title (from include/rt/x.hpp:line)".
 2. The reference builds with -Werror and passes every test (hidden suites included; the tools'
    own tests, label tools, are left to CI's ordinary ctest run).
 3. A kit with every stage stripped builds with -Werror (test suites, stage programs and the
@@ -28,10 +36,13 @@
    RT_KIT_STRIP says and keep that run's results.
    That earlier programs exit 0 is checked once for all stages: each program with every
    later stage stripped at once (check_programs_stop). --real-kits builds each kit instead.
+   (make_kit writes no such kit: it strips a stage with every later one. A kit stripping
+   one stage is the proof that each stage's tests fail alone.)
 A failing case of stage k that names another stage's exercise is a bug in that test (it
 calls another stage's exercise) and is reported by name. A library case (tests/library_*,
 never graded) passes, or fails only with the not-done message of a stage the kit strips: the
-library may run the student's code, as the programs do (save_image encodes with it).
+library may run the student's code, as the programs do (save_image encodes with it). (ctest
+counts such a case as skipped: tests/CMakeLists.txt, so the library label passes in a kit.)
 
 The kits are written into one folder (<work>/kit) that is updated in place, so its build
 folder recompiles only what a kit changes; ccache is used when it is installed.
@@ -495,6 +506,230 @@ def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: Lis
     return reports
 
 
+# --------------------------------------------------------------------------
+# Leaks: no kit holds an exercise's answer outside the exercise's own region
+# --------------------------------------------------------------------------
+
+# A kit file leaks a region's answer when it holds LEAK_RUN of the region's
+# distinctive lines one after the other (every line of a region that has fewer).
+# Lines are compared after leak_key: no comment, no whitespace, no `rt::`, no
+# brace opening or closing a block at either end. A line is distinctive when it
+# holds at least LEAK_WORDS names or numbers besides LEAK_COMMON_WORDS, so `}`,
+# `else`, `return false;` and `(void)x;` never count. Measured on the
+# reference: no kit holds more than 2 distinctive lines of a region in a row
+# outside it (a tree walk in a stage-04 test shares 2 with build_groups, the
+# given fresnel_reflectance 2 with refract), while a test helper that copies an
+# exercise's body holds 3 or more even with names changed (a copy of the
+# textbook quadratic written from its formula holds 6, one of the book's slab
+# test or of Moller-Trumbore 3; tools/tests/test_check_kit.py puts copies into
+# a kit and sees them reported).
+LEAK_RUN = 3
+LEAK_WORDS = 3
+LEAK_COMMON_WORDS = frozenset({"return", "else", "break", "continue", "true", "false", "do", "try", "default"})
+_LEAK_WORD_RE = re.compile(r"[A-Za-z_]\w*|[0-9][\w.']*")
+
+
+def _without_line_comment(line: str) -> str:
+    """`line` without a // comment (one inside a string or a character literal stays)."""
+    start = line.find("//")
+    if start < 0:
+        return line
+    if '"' not in line[:start] and "'" not in line[:start]:
+        return line[:start]
+    quote, i = "", 0
+    while i < len(line):
+        c = line[i]
+        if quote:
+            if c == "\\":
+                i += 2
+                continue
+            if c == quote:
+                quote = ""
+        elif c in "\"'":
+            quote = c
+        elif line.startswith("//", i):
+            return line[:i]
+        i += 1
+    return line
+
+
+@functools.lru_cache(maxsize=None)
+def leak_key(line: str) -> Optional[str]:
+    """The line as the leak check compares it, or None when it is not distinctive."""
+    text = _without_line_comment(line).strip()
+    if not text or text.startswith(("#", "/*", "*")):
+        return None
+    if sum(1 for w in _LEAK_WORD_RE.findall(text) if w not in LEAK_COMMON_WORDS) < LEAK_WORDS:
+        return None
+    # `if (x) {` and `if (x)`, `} else if (x) {` and `else if (x)`: the same line in another layout
+    return "".join(re.sub(r"\brt::", "", text).split()).lstrip("}").rstrip("{")
+
+
+@dataclass
+class Answer:
+    """The distinctive lines of one region of the reference: (key, line number)."""
+    region: make_kit.Region
+    lines: List[Tuple[str, int]]
+
+    @property
+    def run(self) -> int:
+        """How many of its lines in a row make a leak."""
+        return min(LEAK_RUN, len(self.lines))
+
+
+def reference_answers(root: Path, regions: Sequence[make_kit.Region]) -> List[Answer]:
+    answers = []
+    for r in regions:
+        body = (root / r.path).read_text(encoding="utf-8").split("\n")[r.begin_line:r.end_line - 1]
+        keyed = [(leak_key(l), r.begin_line + 1 + k) for k, l in enumerate(body)]
+        answers.append(Answer(r, [(key, n) for key, n in keyed if key]))
+    return answers
+
+
+def plan_texts(root: Path, plan: "make_kit.KitPlan") -> List[Tuple[str, str]]:
+    """(path, text) of every text file of the kit `plan` describes, without writing it."""
+    out = []
+    for rel in plan.files:
+        if rel in plan.contents:
+            out.append((rel, plan.contents[rel]))
+            continue
+        try:
+            out.append((rel, (root / rel).read_text(encoding="utf-8")))
+        except (UnicodeDecodeError, OSError):
+            pass  # an image, a binary mesh: no C++ to hold an answer
+    return out
+
+
+def folder_texts(kit: Path) -> List[Tuple[str, str]]:
+    """(path, text) of every text file of a kit written to `kit` (build folders left out)."""
+    out = []
+    for dirpath, dirnames, filenames in os.walk(kit):
+        dirnames[:] = sorted(d for d in dirnames if d not in make_kit.ALWAYS_SKIPPED_DIRS
+                             and not make_kit.BUILD_DIR_RE.match(d))
+        for name in sorted(filenames):
+            path = Path(dirpath, name)
+            try:
+                out.append((path.relative_to(kit).as_posix(), path.read_text(encoding="utf-8")))
+            except (UnicodeDecodeError, OSError):
+                pass
+    return out
+
+
+def _runs(keys: List[Tuple[str, int]], index: Dict[str, List[Tuple[int, int]]]) -> Dict[int, Tuple[int, int, int]]:
+    """For each answer, its longest run in `keys` (a kit file's distinctive lines, in
+    order): answer -> (length, line in the kit file, position in the answer)."""
+    best: Dict[int, Tuple[int, int, int]] = {}
+    previous: Dict[Tuple[int, int], int] = {}
+    for j, (key, _) in enumerate(keys):
+        current: Dict[Tuple[int, int], int] = {}
+        for a, i in index.get(key, ()):
+            length = previous.get((a, i - 1), 0) + 1
+            current[(a, i)] = length
+            if length > best.get(a, (0, 0, 0))[0]:
+                best[a] = (length, keys[j - length + 1][1], i - length + 1)
+        previous = current
+    return best
+
+
+@dataclass
+class _Segment:
+    """The distinctive lines of one part of a kit file: outside its exercise regions
+    (answer None), or the body of one region (answer: the index of its own answer)."""
+    keys: List[Tuple[str, int]]
+    answer: Optional[int]
+
+
+def _segments(rel: str, text: str, own: Dict[Tuple[str, int, str], int], stages: Set[int]) -> List[_Segment]:
+    lines = text.split("\n")
+    regions: List[make_kit.Region] = []
+    if rel.endswith(make_kit.SOURCE_SUFFIXES) and "RT_EXERCISE_BEGIN" in text:
+        regions = make_kit.scan_file(rel, text, stages, [])
+    inside: Set[int] = set()
+    for r in regions:
+        inside.update(range(r.begin_line, r.end_line + 1))
+    keyed = [(leak_key(l), k + 1) for k, l in enumerate(lines)]
+    out = [_Segment([(key, n) for key, n in keyed if key and n not in inside], None)]
+    for r in regions:
+        out.append(_Segment([(key, n) for key, n in keyed[r.begin_line:r.end_line - 1] if key],
+                            own.get((r.path, r.stage, r.title))))
+    return out
+
+
+def find_leaks(texts: Sequence[Tuple[str, str]], answers: Sequence[Answer], stages: Set[int],
+               cache: Optional[Dict[Tuple[str, str], List[_Segment]]] = None) -> List[str]:
+    """One line per kit file that holds a run of a region's answer (Answer.run lines in a
+    row) where it does not belong: outside every exercise region, or inside another
+    region. A region's own answer in its own place is a stage the kit hands out solved,
+    as make_kit reports, and no leak; so are its own lines when they are also part of
+    another answer (stage 07's ray colour, handed out, holds the part of stage 09's that
+    repeats it). `cache` keeps each file's parsing between kits."""
+    cache = {} if cache is None else cache
+    index: Dict[str, List[Tuple[int, int]]] = {}
+    for a, answer in enumerate(answers):
+        for i, (key, _) in enumerate(answer.lines):
+            index.setdefault(key, []).append((a, i))
+    own = {(ans.region.path, ans.region.stage, ans.region.title): a for a, ans in enumerate(answers)}
+    problems = []
+    for rel, text in texts:
+        if (rel, text) not in cache:
+            cache[(rel, text)] = _segments(rel, text, own, stages)
+        for segment in cache[(rel, text)]:
+            keys = segment.keys
+            if segment.answer is not None:
+                mine = {key for key, _ in answers[segment.answer].lines}
+                keys = [(key, n) for key, n in keys if key not in mine]  # its own answer is its own
+            for a, (length, line, position) in sorted(_runs(keys, index).items()):
+                answer = answers[a]
+                if length >= answer.run and a != segment.answer:
+                    problems.append(f"{rel}:{line}: holds {length} lines of the answer to "
+                                    f"stage{answer.region.stage:02d}: {answer.region.title} "
+                                    f"(from {answer.region.path}:{answer.lines[position][1]})")
+    return problems
+
+
+def kit_choices(root: Path) -> List[Tuple[str, Set[int]]]:
+    """Every kit make_kit writes: --from-stage N for each stage (--from-stage of the first
+    is --all), by name and the stages it strips."""
+    stages = sorted(make_kit.known_stages(root))
+    return [(f"kit from stage {s:02d}", make_kit.select_stages(stages, s, False)) for s in stages]
+
+
+def check_leaks(root: Path, kits: Optional[Sequence[Path]] = None) -> KitReport:
+    """The leak check of every kit make_kit writes (in memory), or of the kit folders `kits`."""
+    report = KitReport("no answer outside its exercise region")
+    t0 = time.monotonic()
+    regions = make_kit.scan_repository(root)
+    answers = reference_answers(root, regions)
+    stages = set(make_kit.known_stages(root))
+    where: Dict[str, List[str]] = {}
+    if kits:
+        checked = [(str(kit), folder_texts(kit)) for kit in kits]
+    else:
+        checked = [(name, plan_texts(root, make_kit.plan_kit(root, stripped, regions)))
+                   for name, stripped in kit_choices(root)]
+    cache: Dict[Tuple[str, str], List[_Segment]] = {}
+    for name, texts in checked:
+        report.cases += 1
+        found = find_leaks(texts, answers, stages, cache)
+        report.passed += 0 if found else 1
+        for problem in found:
+            where.setdefault(problem, []).append(name)
+    for problem, names in where.items():
+        report.problems.append(problem + (f" [in {len(names)} kits]" if len(names) > 1 else f" [{names[0]}]"))
+    short = [a for a in answers if len(a.lines) < LEAK_RUN]
+    report.notes.append(f"{len(answers)} regions, each against every text file of {len(checked)} kits: a leak is "
+                        f"{LEAK_RUN} of its distinctive lines in a row (lines of at least {LEAK_WORDS} words, "
+                        f"comments and whitespace ignored) outside its region; "
+                        f"{len(short)} regions have fewer and leak with all of them"
+                        + (f" ({', '.join(f'{a.region.stage:02d}: {a.region.title}' for a in short)})" if short else ""))
+    empty = [a for a in answers if not a.lines]
+    if empty:
+        report.notes.append("regions with no distinctive line, never found: " +
+                            ", ".join(f"{a.region.where()}" for a in empty))
+    report.seconds = time.monotonic() - t0
+    return report
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--source", default=str(make_kit.DEFAULT_SOURCE), help="the reference repository")
@@ -509,11 +744,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--only", metavar="N[,N...]",
                         help="only these per-stage kits, without the kit of every stage stripped (while "
                              "working on a stage; CI checks them all)")
+    parser.add_argument("--leaks", nargs="*", metavar="KIT",
+                        help="run the leak check alone: on every kit make_kit writes (in memory), or on the "
+                             "kit folders given")
     args = parser.parse_args(argv)
 
     source = Path(args.source).resolve()
     work = Path(args.work).resolve() if args.work else source / "build" / "kit-check"
-    work.mkdir(parents=True, exist_ok=True)
     started = time.monotonic()
     reports: List[KitReport] = []
 
@@ -529,6 +766,20 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     all_stages = sorted(make_kit.known_stages(source))
     log(f"check_kit: {len(regions)} regions in stages {', '.join(f'{s:02d}' for s in stages_with_regions)}; "
         f"test suites for stages {', '.join(f'{s:02d}' for s in all_stages)}")
+
+    # 1b. no answer outside its region, in any kit
+    if args.leaks:
+        missing = [k for k in args.leaks if not Path(k, "include").is_dir()]
+        if missing:
+            parser.error(f"--leaks: expected kit folders (each holding include/), found {', '.join(missing)}")
+    leaks = check_leaks(source, [Path(k) for k in args.leaks] if args.leaks else None)
+    reports.append(leaks)
+    print_report(leaks)
+    if args.leaks is not None:
+        failed = 1 if leaks.problems else 0
+        log(f"check_kit: {1 - failed} passed, {failed} failed")
+        return failed
+    work.mkdir(parents=True, exist_ok=True)
     doc_of = {s: make_kit.stage_doc(source, s) for s in all_stages}
     region_messages = {make_kit.not_done_message(r, doc_of.get(r.stage)): r.stage for r in regions}
 

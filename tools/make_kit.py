@@ -13,14 +13,15 @@ markers, every comment outside the region, the hint comments inside it, and a
 TODO(stage NN) line. Instructor-only material named in tools/kit_manifest.json
 is left out of the kit.
 
-    python3 tools/make_kit.py --from-stage 3 ../rt-kit-week3
-    python3 tools/make_kit.py --only-stage 2 ../rt-kit-stage2
+    python3 tools/make_kit.py --from-stage 3 ../rt-kit-week3   # stages 03.. stripped, 01-02 given solved
     python3 tools/make_kit.py --all ../rt-kit
     python3 tools/make_kit.py --list          # the regions, by stage
     python3 tools/make_kit.py --check         # validate the markers only
 
-Stages are discovered, never listed here: a stage exists when tests/stageNN_*.cpp
-exists; its doc page is docs/stages/NN-*.md. Marker errors are printed as
+A kit strips a stage and every later one: the earlier stages are handed out
+solved, and the kit's last line says which answers it gives away. Stages are
+discovered, never listed here: a stage exists when tests/stageNN_*.cpp exists;
+its doc page is docs/stages/NN-*.md. Marker errors are printed as
 "file:line:col: expected X, found Y; hint", one per line, and the exit code is 2.
 
 Python 3 standard library only.
@@ -876,14 +877,17 @@ def _with_error_include(rel: str, stripped: str) -> str:
     return stripped
 
 
-def select_stages(all_stages: Iterable[int], from_stage: Optional[int], only_stage: Optional[int],
-                  strip_all: bool) -> Set[int]:
+def select_stages(all_stages: Iterable[int], from_stage: Optional[int], strip_all: bool) -> Set[int]:
+    """The stages a kit strips: every one (--all), or stage `from_stage` and every later
+    one (--from-stage). A stage beyond the last would strip nothing and is refused."""
     stages = set(all_stages)
     if strip_all:
         return stages
-    if only_stage is not None:
-        return {only_stage}
     if from_stage is not None:
+        if stages and from_stage > max(stages):
+            raise KitError([f"--from-stage {from_stage}: expected a stage up to {stage_label(max(stages))}, "
+                            f"the last with tests (tests/stageNN_*.cpp), found {stage_label(from_stage)}; "
+                            f"a kit from it would strip nothing and hand out every answer"])
         return {s for s in stages if s >= from_stage}
     return set()
 
@@ -898,10 +902,20 @@ class KitPlan:
     missing_docs: List[int]         # stripped stages without a doc page
 
 
-def plan_kit(root: Path, stages_to_strip: Set[int]) -> KitPlan:
+# A kit's file -> the instructor-only file that replaces it. In the replacement,
+# KIT_STAGES_PLACEHOLDER becomes the stages the kit strips ("03 04 05"): the
+# kit's CI script (tools/kit/ci-run) runs their tests, not the reference's CI.
+KIT_REPLACEMENTS = {"README.md": "tools/kit/README.md", "DEVELOPERS.md": "tools/kit/DEVELOPERS.md",
+                    ".ci/run": "tools/kit/ci-run"}
+KIT_STAGES_PLACEHOLDER = "@RT_KIT_STAGES@"
+
+
+def plan_kit(root: Path, stages_to_strip: Set[int], regions: Optional[List[Region]] = None) -> KitPlan:
+    """The kit of `root` that strips `stages_to_strip`; `regions`: scan_repository(root)
+    when the caller has it already (check_kit plans every kit from one scan)."""
     files = repository_files(root)
     manifest = load_manifest(root)
-    regions = scan_repository(root, files)
+    regions = scan_repository(root, files) if regions is None else regions
     stages = known_stages(root)
     unknown = sorted(s for s in stages_to_strip if s not in stages)
     if unknown:
@@ -921,14 +935,15 @@ def plan_kit(root: Path, stages_to_strip: Set[int]) -> KitPlan:
     for rel, file_regions in by_file.items():
         text = (root / rel).read_text(encoding="utf-8")
         contents[rel] = strip_text(rel, text, file_regions, doc_of)
-    # The kit's README and DEVELOPERS.md speak to students: tools/kit/README.md
-    # and tools/kit/DEVELOPERS.md (instructor-only) replace the repository's,
-    # which describe the reference, the instructor's tools and files a kit
-    # leaves out.
-    for student_page in ("README.md", "DEVELOPERS.md"):
-        replacement = root / "tools" / "kit" / student_page
-        if replacement.is_file() and student_page in kept:
-            contents[student_page] = replacement.read_text(encoding="utf-8")
+    # The kit's README, DEVELOPERS.md and CI script speak to students: the files
+    # of tools/kit/ (instructor-only) replace the repository's, which describe
+    # the reference, the instructor's tools and files a kit leaves out.
+    for rel, replacement_rel in KIT_REPLACEMENTS.items():
+        replacement = root / replacement_rel
+        if replacement.is_file() and rel in kept:
+            text = replacement.read_text(encoding="utf-8")
+            contents[rel] = text.replace(KIT_STAGES_PLACEHOLDER, " ".join(
+                stage_label(s) for s in sorted({r.stage for r in stripped})))
     missing = sorted({r.stage for r in stripped if doc_of.get(r.stage) is None})
     return KitPlan(kept, left_out, stripped, solved, contents, missing)
 
@@ -1004,6 +1019,19 @@ def sync_kit(root: Path, plan: KitPlan, target: Path) -> int:
 # Command line
 # --------------------------------------------------------------------------
 
+def stage_ranges(stages: Iterable[int]) -> str:
+    """"01-02, 05": the stages, consecutive ones as a range."""
+    out: List[str] = []
+    run: List[int] = []
+    for s in sorted(set(stages)) + [None]:
+        if run and (s is None or s != run[-1] + 1):
+            out.append(stage_label(run[0]) if len(run) == 1 else f"{stage_label(run[0])}-{stage_label(run[-1])}")
+            run = []
+        if s is not None:
+            run.append(s)
+    return ", ".join(out)
+
+
 def describe(plan: KitPlan) -> str:
     def stages_of(regions: List[Region]) -> str:
         stages = sorted({r.stage for r in regions})
@@ -1014,6 +1042,19 @@ def describe(plan: KitPlan) -> str:
             f"left out {len(plan.left_out)} instructor-only files")
 
 
+def given_away(plan: KitPlan) -> str:
+    """Which answers the kit hands out: the regions it leaves solved."""
+    if not plan.solved:
+        return "the kit gives away no answer: every stage's regions are stripped"
+    stages = sorted({r.stage for r in plan.solved})
+    word = "stage" if len(stages) == 1 else "stages"
+    first_stripped = min((r.stage for r in plan.stripped), default=None)
+    why = (f"a kit from stage {stage_label(first_stripped)} hands out the earlier stages solved"
+           if first_stripped is not None else "it strips nothing")
+    regions = f"{len(plan.solved)} region" + ("" if len(plan.solved) == 1 else "s")
+    return f"the kit gives away the answers of {word} {stage_ranges(stages)} ({regions}): {why}"
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(
         description="Write a student kit of rt: the exercise regions of the chosen stages are "
@@ -1022,7 +1063,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     choice = parser.add_mutually_exclusive_group()
     choice.add_argument("--from-stage", type=int, metavar="N",
                         help="strip stages N and later; earlier stages are handed out solved")
-    choice.add_argument("--only-stage", type=int, metavar="N", help="strip stage N only")
+    # refused with a pointer to --from-stage: a kit stripping stage N alone hands out the later ones solved
+    choice.add_argument("--only-stage", type=int, metavar="N", help=argparse.SUPPRESS)
     choice.add_argument("--all", action="store_true", help="strip every stage")
     choice.add_argument("--list", action="store_true", help="list the regions and stages, write nothing")
     choice.add_argument("--check", action="store_true", help="validate the markers, write nothing")
@@ -1046,15 +1088,20 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 print(f"make_kit: {len(regions)} regions in stages "
                       f"{', '.join(stage_label(s) for s in sorted({r.stage for r in regions}))}: markers valid")
             return 0
-        if args.target is None or not (args.all or args.from_stage is not None or args.only_stage is not None):
-            parser.error("give a target folder and one of --from-stage N, --only-stage N, --all")
-        chosen = select_stages(known_stages(root), args.from_stage, args.only_stage, args.all)
+        if args.only_stage is not None:
+            parser.error(f"expected --from-stage {args.only_stage} (stage {args.only_stage} and every later one "
+                         f"stripped), found --only-stage {args.only_stage}: a kit stripping stage "
+                         f"{args.only_stage} alone would hand out the later stages solved")
+        if args.target is None or not (args.all or args.from_stage is not None):
+            parser.error("give a target folder and one of --from-stage N, --all")
+        chosen = select_stages(known_stages(root), args.from_stage, args.all)
         plan = plan_kit(root, chosen)
         for s in plan.missing_docs:
             print(f"make_kit: warning: stage {stage_label(s)} has no docs/stages/{stage_label(s)}-*.md; "
                   f"its messages point to docs/student-guide.md", file=sys.stderr)
         write_kit(root, plan, Path(args.target), force=args.force)
         print(f"make_kit: wrote {args.target}: {describe(plan)}")
+        print(f"make_kit: {given_away(plan)}")
         return 0
     except KitError as e:
         for message in e.messages:

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <ostream>
@@ -22,12 +23,19 @@
 
 namespace rt {
 
-/// Binary PPM of the image through the colour pipeline (encoding.hpp).
+/// Binary PPM of the image through the colour pipeline (encoding.hpp). The
+/// file is written by stage 02's write_ppm (image_io.hpp), the one PPM writer:
+/// it is given the pipeline's bytes b as the levels b / 255 with gamma 1, and
+/// stores each as quantize(b / 255) = b again (the level is a byte level, so
+/// rounding to the nearest one gives it back exactly).
 inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
 {
-    out << "P6\n" << img.width << ' ' << img.height << "\n255\n";
     const std::vector<std::uint8_t> bytes = encode_image(img, enc);
-    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    image levels(img.width, img.height);
+    for (std::size_t k = 0; k < levels.pixels.size(); ++k)
+        for (int channel = 0; channel < 3; ++channel)
+            levels.pixels[k][channel] = float(bytes[k * 3 + std::size_t(channel)]) / 255.0f;
+    write_ppm(out, levels, 1.0f);
 }
 
 /// What save_image(path, img, enc) writes, as an output_file; `img` must outlive the write.

@@ -4,6 +4,8 @@ stripped kit allows; the programs' stop check; the switchable kit's trace. The k
 Run: python3 -m unittest -v test_check_kit   (ctest runs it as tools.check_kit)
 """
 
+import contextlib
+import io
 import os
 import shutil
 import subprocess
@@ -17,6 +19,7 @@ TOOLS = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(TOOLS))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import check_kit  # noqa: E402
+import make_kit  # noqa: E402
 
 NOT_DONE_02 = 'THREW exception: "stage 02: quantise to 8 bits: see docs/stages/02-generate-rays.md"'
 NOT_DONE_08 = "THREW exception: stage 08: clamp tone map: see docs/stages/08-output.md"
@@ -104,6 +107,136 @@ class ProgramsStop(unittest.TestCase):
         self.assertEqual(len(report.problems), 1)
         self.assertIn("stage02_s", report.problems[0])
         self.assertIn("03", report.problems[0])
+
+
+class Leaks(unittest.TestCase):
+    """The leak check: no kit holds a run of an exercise's distinctive lines outside the
+    exercise's own region (check_kit.find_leaks, check_kit.check_leaks)."""
+
+    def test_a_line_counts_without_comments_whitespace_and_rt_when_it_has_three_words(self):
+        key = check_kit.leak_key
+        self.assertEqual(key("    const real dd = glm::dot(d, d); // the book's a"), "constrealdd=glm::dot(d,d);")
+        self.assertEqual(key("const rt::vec3 pc = r.origin - s.center;"), key("const vec3 pc = r.origin - s.center;"))
+        self.assertEqual(key('out << "P6 // not a comment" << w;'), 'out<<"P6//notacomment"<<w;')
+        for plain in ("}", "else {", "return false;", "return;", "(void)tmin;", "// const real t = 1;",
+                      "#include <cmath>", "", "    * const real t = 1;"):
+            self.assertIsNone(key(plain), plain)
+
+    ANSWER_FILE = """
+        #pragma once
+        inline int solve(int a, int b)
+        {
+            // RT_EXERCISE_BEGIN(stage01: solve it)
+            const int sum = a + b;
+            const int twice = 2 * sum;
+            if (twice > 100)
+                return 100;
+            const int result = twice - a;
+            return result;
+            // RT_EXERCISE_END
+        }
+    """
+    STUB = """
+        #pragma once
+        inline int solve(int a, int b)
+        {
+            // RT_EXERCISE_BEGIN(stage01: solve it)
+            (void)a;
+            (void)b;
+            throw rt::exercise_not_done("stage 01: solve it: see docs/student-guide.md");
+            // RT_EXERCISE_END
+        }
+    """
+    COPY = """
+        // a test's helper that copies the answer, reformatted and with its comments
+        int copied(int a, int b) {
+            const int sum = a + b;  // as the book has it
+            const int twice = 2 * sum;
+            if (twice > 100) {
+                return 100;
+            }
+            return twice - a;
+        }
+    """
+
+    def leaks(self, texts):
+        answer = textwrap.dedent(self.ANSWER_FILE).lstrip("\n")
+        regions = make_kit.scan_file("include/rt/solve.hpp", answer, {1}, [])
+        with tempfile.TemporaryDirectory() as tmp:
+            (Path(tmp) / "include" / "rt").mkdir(parents=True)
+            (Path(tmp) / "include" / "rt" / "solve.hpp").write_text(answer)
+            answers = check_kit.reference_answers(Path(tmp), regions)
+        return check_kit.find_leaks([(rel, textwrap.dedent(text).lstrip("\n")) for rel, text in texts], answers, {1})
+
+    def test_an_answer_in_its_own_region_is_no_leak(self):
+        self.assertEqual(self.leaks([("include/rt/solve.hpp", self.ANSWER_FILE)]), [])  # handed out solved
+        self.assertEqual(self.leaks([("include/rt/solve.hpp", self.STUB)]), [])
+
+    def test_three_distinctive_lines_in_a_row_elsewhere_are_a_leak_named_by_file_and_line(self):
+        self.assertEqual(self.leaks([("include/rt/solve.hpp", self.STUB), ("tests/helper.hpp", self.COPY)]),
+                         ["tests/helper.hpp:3: holds 3 lines of the answer to stage01: solve it "
+                          "(from include/rt/solve.hpp:5)"])
+
+    def test_two_lines_in_a_row_are_not(self):
+        two = "const int sum = a + b;\nconst int twice = 2 * sum;\nconst int other = sum - 1;\n"
+        self.assertEqual(self.leaks([("tests/helper.hpp", two)]), [])
+
+    def test_another_region_holding_an_answer_is_a_leak(self):
+        other = """
+            inline int other(int a, int b)
+            {
+                // RT_EXERCISE_BEGIN(stage01: another)
+                const int sum = a + b;
+                const int twice = 2 * sum;
+                if (twice > 100)
+                    return 100;
+                return 0;
+                // RT_EXERCISE_END
+            }
+        """
+        found = self.leaks([("include/rt/solve.hpp", self.STUB), ("include/rt/other.hpp", other)])
+        self.assertEqual(len(found), 1)
+        self.assertTrue(found[0].startswith("include/rt/other.hpp:4: holds 3 lines of the answer to stage01"), found)
+
+    def test_no_kit_make_kit_writes_holds_an_answer_outside_its_region(self):
+        report = check_kit.check_leaks(TOOLS.parent)
+        self.assertEqual(report.problems, [])
+        self.assertEqual(report.cases, len(make_kit.known_stages(TOOLS.parent)))  # --from-stage N, every N
+
+    def test_a_copy_of_an_exercise_body_put_back_into_a_kit_test_fails_the_check(self):
+        repo = TOOLS.parent
+        regions = {r.title: r for r in make_kit.scan_repository(repo)}
+        with tempfile.TemporaryDirectory() as tmp:
+            kit = Path(tmp) / "kit"
+            with contextlib.redirect_stdout(io.StringIO()):
+                self.assertEqual(make_kit.main(["--all", str(kit)]), 0)
+            self.assertEqual(check_kit.check_leaks(repo, [kit]).problems, [])
+            # the stage-03 quadratic, as a test's helper comparing it with the stable method once held it
+            sphere = regions["ray-sphere intersection"]
+            body = (repo / sphere.path).read_text().split("\n")[sphere.begin_line:sphere.end_line - 1]
+            first = next(k for k, line in enumerate(body) if check_kit.leak_key(line))  # its first line of code
+            distinctive = sum(1 for line in body if check_kit.leak_key(line))
+            helper = kit / "tests" / "sphere_accuracy.hpp"
+            before = helper.read_text()
+            opening = before.count("\n") + 3  # the copy's line "{" (after an empty line and its signature)
+            helper.write_text(before + "\ninline bool textbook_copy(const rt::sphere& s, const rt::ray& r, real tmin, "
+                              "real tmax, rt::hit_record& rec)\n{\n" + "\n".join(body) + "\n}\n")
+            # Moller-Trumbore with a name changed, as a copy written from the paper would be
+            triangle = regions["Moller-Trumbore ray-triangle intersection"]
+            body = (repo / triangle.path).read_text().split("\n")[triangle.begin_line:triangle.end_line - 1]
+            watertight = kit / "tests" / "library_watertight.cpp"
+            watertight.write_text(watertight.read_text() + "\nbool mt_copy(const rt::triangle& tri, const rt::ray& r, "
+                                  "real tmin, real tmax, rt::hit_record& rec)\n{\n" +
+                                  "\n".join(body).replace("inv_det", "inv") + "\n}\n")
+            problems = check_kit.check_leaks(repo, [kit]).problems
+        self.assertEqual(len(problems), 2, problems)
+        by_file = {p.split(":")[0]: p for p in problems}
+        self.assertTrue(by_file["tests/sphere_accuracy.hpp"].startswith(
+            f"tests/sphere_accuracy.hpp:{opening + 1 + first}: holds {distinctive} lines of the answer to stage03: "
+            f"ray-sphere intersection (from {sphere.path}:{sphere.begin_line + 1 + first})"), problems)
+        self.assertRegex(by_file["tests/library_watertight.cpp"],
+                         r"^tests/library_watertight.cpp:\d+: holds [3-9] lines of the answer to stage04: "
+                         r"Moller-Trumbore ray-triangle intersection \(from include/rt/triangle.hpp:\d+\)")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,10 @@
 Run: python3 -m unittest discover -s tools/tests -v   (ctest runs it as tools.make_kit)
 """
 
+import contextlib
+import io
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -573,6 +576,8 @@ class Kits(unittest.TestCase):
             "DEVELOPERS.md": "the reference solution; tools/check_kit.py\n",
             "tools/kit/README.md": "your kit\n",
             "tools/kit/DEVELOPERS.md": "your code\n",
+            ".ci/run": "python3 tools/check_kit.py\n",
+            "tools/kit/ci-run": "stages=(@RT_KIT_STAGES@)\n",
             "build/CMakeCache.txt": "junk\n",
         }
         for rel, text in files.items():
@@ -585,6 +590,16 @@ class Kits(unittest.TestCase):
 
     def make(self, *args):
         return make_kit.main(["--source", str(self.repo), *args])
+
+    def make_printing(self, *args):
+        """(exit code, stdout, stderr) of make_kit; a refusal by argparse is exit code 2."""
+        out, err = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            try:
+                code = self.make(*args)
+            except SystemExit as e:
+                code = e.code
+        return code, out.getvalue(), err.getvalue()
 
     def test_from_stage_strips_later_stages_and_leaves_instructor_material_out(self):
         kit = self.tmp / "kit"
@@ -606,15 +621,42 @@ class Kits(unittest.TestCase):
         self.assertEqual((kit / "DEVELOPERS.md").read_text(), "your code\n")
         self.assertFalse((kit / "tools/kit").exists())
 
-    def test_only_stage_and_all(self):
-        kit = self.tmp / "kit1"
-        self.assertEqual(self.make("--only-stage", "1", str(kit)), 0)
-        text = (kit / "include/rt/a.hpp").read_text()
-        self.assertIn("see docs/stages/01-first.md", text)
-        self.assertIn("return 2 * value * k;", text)
+    def test_the_kit_ci_runs_the_stripped_stages_not_the_reference_ci(self):
+        # .ci/ is a dot folder: a kit takes it from git's list of the repository's files
+        if shutil.which("git") is None:
+            self.skipTest("needs git")
+        subprocess.run(["git", "init", "-q", str(self.repo)], check=True)
+        kit = self.tmp / "kit"
+        self.assertEqual(self.make("--from-stage", "2", str(kit)), 0)
+        self.assertEqual((kit / ".ci/run").read_text(), "stages=(02)\n")
+        kit = self.tmp / "kitall"
+        self.assertEqual(self.make("--all", str(kit)), 0)
+        self.assertEqual((kit / ".ci/run").read_text(), "stages=(01 02)\n")
+
+    def test_all_strips_every_stage(self):
         kit = self.tmp / "kitall"
         self.assertEqual(self.make("--all", str(kit)), 0)
         self.assertEqual((kit / "include/rt/a.hpp").read_text().count("throw rt::exercise_not_done"), 2)
+
+    def test_a_kit_says_which_answers_it_gives_away(self):
+        code, out, _ = self.make_printing("--from-stage", "2", str(self.tmp / "kit2"))
+        self.assertEqual(code, 0)
+        self.assertIn("gives away the answers of stage 01 (1 region): a kit from stage 02 hands out the earlier "
+                      "stages solved", out)
+        code, out, _ = self.make_printing("--all", str(self.tmp / "kitall"))
+        self.assertEqual(code, 0)
+        self.assertIn("gives away no answer", out)
+
+    def test_no_kit_strips_a_stage_and_hands_out_a_later_one_solved(self):
+        # --only-stage N would strip N alone and hand out the later stages solved: it is refused,
+        # naming the option that strips N and every later stage
+        code, _, err = self.make_printing("--only-stage", "1", str(self.tmp / "kit1"))
+        self.assertEqual(code, 2)
+        self.assertIn("--from-stage 1", err)
+        self.assertFalse((self.tmp / "kit1").exists())
+        for first in (1, 2):
+            stripped = make_kit.select_stages([1, 2], first, False)
+            self.assertEqual(stripped, {s for s in (1, 2) if s >= first})
 
     def test_an_existing_target_needs_force(self):
         kit = self.tmp / "kit"
@@ -629,8 +671,11 @@ class Kits(unittest.TestCase):
         self.assertEqual(self.make("--all", str(self.repo / "kit")), 2)
         self.assertFalse((self.repo / "kit").exists())
 
-    def test_unknown_stage_chosen(self):
-        self.assertEqual(self.make("--only-stage", "5", str(self.tmp / "kit")), 2)
+    def test_a_stage_beyond_the_last_is_refused(self):
+        # a kit from stage 05 of a two-stage course would strip nothing and hand out every answer
+        code, _, err = self.make_printing("--from-stage", "5", str(self.tmp / "kit"))
+        self.assertEqual(code, 2)
+        self.assertIn("expected a stage up to 02", err)
         self.assertFalse((self.tmp / "kit").exists())
 
     def test_marker_errors_stop_the_kit(self):
@@ -648,6 +693,26 @@ class Kits(unittest.TestCase):
         self.assertEqual(make_kit.sync_kit(self.repo, plan, kit), 1)  # only a.hpp changes
         self.assertFalse((kit / "stale.txt").exists())
         self.assertIn("return a + b;", (kit / "include/rt/a.hpp").read_text())
+
+
+class TheRepositorysKit(unittest.TestCase):
+    """A kit of this repository, as a course hands it out in week 3."""
+
+    def test_its_ci_script_builds_the_stripped_stages_and_needs_nothing_the_kit_lacks(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            kit = Path(tmp) / "kit"
+            with contextlib.redirect_stdout(io.StringIO()):
+                self.assertEqual(make_kit.main(["--from-stage", "3", str(kit)]), 0)
+            script = (kit / ".ci" / "run").read_text()
+            self.assertIn("stages=(03 04 05 06 07 08 09 10)", script)
+            self.assertIn('--target "check_stage$stage"', script)
+            self.assertIn("-L '^library$'", script)
+            for path in set(re.findall(r"\b(?:tools|tests|scripts)/[\w./-]+", script)):
+                self.assertTrue((kit / path).exists(), f".ci/run names {path}, which the kit does not hold")
+            if shutil.which("bash"):
+                p = subprocess.run(["bash", "-n", str(kit / ".ci" / "run")], capture_output=True, text=True)
+                self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertTrue(os.access(kit / ".ci" / "run", os.X_OK))
 
 
 if __name__ == "__main__":
