@@ -1,0 +1,268 @@
+"""Running a submission's test cases: each in a process of its own, with a time limit and
+resource limits, and, when the grader runs as root, as an unprivileged user that cannot
+read the grader's sources (the reference solution among them).
+
+A case passes only when its program exits with 0 *and* doctest's own summary says that at
+least one case ran and none failed: a program that ends itself early (`std::exit(0)` in a
+region) does not pass.
+"""
+
+from __future__ import annotations
+
+import os
+import pwd
+import re
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Tuple
+
+from .common import GradeError, kill_group, run
+
+DEFAULT_USER = "rtgrader"
+RUN_VARIABLE = "RT_GRADE_RUN"
+SUMMARY_RE = re.compile(r"\[doctest\] test cases:\s*(\d+)\s*\|\s*(\d+) passed\s*\|\s*(\d+) failed")
+MAX_PROCESSES = 512                 # per test user: threads count too
+MAX_FILE_BYTES = 256 * 1024 * 1024    # any file a case writes, its output too
+OUTPUT_KEPT = 64 * 1024                # of a case's output: its first and its last bytes
+
+
+@dataclass
+class TestUser:
+    """Who runs the test cases: a dedicated user (the grader is root) or the grader's own."""
+    name: str
+    uid: int
+    gid: int
+    prefix: List[str] = field(default_factory=list)   # the command that switches to the user
+    dedicated: bool = False
+
+    def describe(self) -> str:
+        if self.dedicated:
+            return (f"the tests ran as the user {self.name} (uid {self.uid}), which cannot read the "
+                    f"grader's files")
+        return (f"the tests ran as {self.name}, the grader's own user (grade.py is not root), so they "
+                f"could read every file that user can; run it as root with a test user "
+                f"({DEFAULT_USER}) to keep a submission's code from reading the reference")
+
+    def command(self, args: Sequence[str]) -> List[str]:
+        return self.prefix + list(args)
+
+    def environment(self, home: Path, token: str) -> Dict[str, str]:
+        """The cases' environment; RT_GRADE_RUN=token marks the processes of one submission."""
+        env = {"PATH": "/usr/local/bin:/usr/bin:/bin", "HOME": str(home), "TMPDIR": str(home),
+               "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8", RUN_VARIABLE: token}
+        if not self.dedicated:
+            env["PATH"] = os.environ.get("PATH", env["PATH"])
+        return env
+
+    def limits(self, memory_mb: int):
+        dedicated = self.dedicated
+
+        def apply() -> None:
+            try:
+                import resource
+                if memory_mb > 0:
+                    limit = memory_mb * 1024 * 1024
+                    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+                resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+                resource.setrlimit(resource.RLIMIT_FSIZE, (MAX_FILE_BYTES, MAX_FILE_BYTES))
+                if dedicated:  # counts the test user's processes and threads
+                    resource.setrlimit(resource.RLIMIT_NPROC, (MAX_PROCESSES, MAX_PROCESSES))
+            except (ImportError, ValueError, OSError):
+                pass
+        return apply
+
+    def reap(self, token: str) -> int:
+        """Ends the processes the cases of one submission left running (a daemon that escaped
+        its process group): the dedicated user's processes marked with `token`, and those that
+        dropped the mark (the cases of other submissions graded at the same time carry their
+        own). Nothing when the tests run as the grader's own user. Returns how many."""
+        if not self.dedicated or not os.path.isdir("/proc"):
+            return 0
+        ended = 0
+        for _ in range(3):          # a process may fork while the first pass looks
+            found = 0
+            for entry in os.listdir("/proc"):
+                if not entry.isdigit():
+                    continue
+                try:
+                    with open(f"/proc/{entry}/status", "rb") as f:
+                        uid = next((line.split()[1] for line in f if line.startswith(b"Uid:")), b"")
+                    if int(uid) != self.uid:
+                        continue
+                    with open(f"/proc/{entry}/environ", "rb") as f:
+                        env = f.read().split(b"\0")
+                except (OSError, ValueError):
+                    continue
+                marks = [e for e in env if e.startswith(RUN_VARIABLE.encode() + b"=")]
+                if not marks or marks[0] == f"{RUN_VARIABLE}={token}".encode():
+                    try:
+                        os.kill(int(entry), signal.SIGKILL)
+                        found += 1
+                    except OSError:
+                        pass
+            ended += found
+            if not found:
+                break
+            time.sleep(0.05)
+        return ended
+
+    def can_reach(self, paths: Sequence[Tuple[Path, str]], env: Dict[str, str]) -> Optional[Path]:
+        """The first of `paths` ((path, 'x' to run or enter it, 'r' to read it)) the user
+        cannot use, or None."""
+        if not self.dedicated:
+            return None
+        for path, how in paths:
+            flag = "-x" if how == "x" else "-r"
+            code, _ = run(self.command(["/bin/sh", "-c", f'test {flag} "$1"', "probe", str(path)]), timeout=30,
+                          env=env)
+            if code != 0:
+                return path
+        return None
+
+
+def choose_user(requested: Optional[str]) -> TestUser:
+    """The dedicated user when the grader is root (`requested`, else rtgrader), the
+    grader's own user otherwise."""
+    if not hasattr(os, "geteuid") or os.geteuid() != 0:
+        uid = os.getuid() if hasattr(os, "getuid") else 0
+        try:
+            name = pwd.getpwuid(uid).pw_name
+        except (KeyError, NameError):
+            name = str(uid)
+        return TestUser(name, uid, os.getgid() if hasattr(os, "getgid") else 0)
+    name = requested or DEFAULT_USER
+    try:
+        entry = pwd.getpwnam(name)
+    except KeyError:
+        raise GradeError(f"expected a user {name} to run the tests as (the grader is root and never runs a "
+                         f"submission's code as root), found none; create it with "
+                         f"`useradd --system --no-create-home --shell /usr/sbin/nologin {name}` "
+                         f"(tools/gradescope/setup.sh does) or pass --run-as USER")
+    if entry.pw_uid == 0:
+        raise GradeError(f"--run-as {name}: expected an unprivileged user, found uid 0")
+    setpriv, runuser = shutil.which("setpriv"), shutil.which("runuser")
+    if setpriv:
+        prefix = [setpriv, f"--reuid={entry.pw_uid}", f"--regid={entry.pw_gid}", "--clear-groups",
+                  "--no-new-privs", "--"]
+    elif runuser:
+        prefix = [runuser, "-u", name, "--"]
+    else:
+        raise GradeError("expected setpriv or runuser (util-linux) to run the tests as another user, "
+                         "found neither; install util-linux")
+    return TestUser(name, entry.pw_uid, entry.pw_gid, prefix, dedicated=True)
+
+
+def prepare_run_dir(run_dir: Path, user: TestUser) -> Tuple[Path, Path]:
+    """run_dir/bin (the test programs, which the user may run but not read) and
+    run_dir/home (the user's working folder); returns both."""
+    bin_dir, home = run_dir / "bin", run_dir / "home"
+    for d in (run_dir, bin_dir):
+        d.mkdir(parents=True, exist_ok=True)
+        os.chmod(d, 0o711)
+    home.mkdir(parents=True, exist_ok=True)
+    if user.dedicated:
+        os.chown(home, user.uid, user.gid)
+    os.chmod(home, 0o700)
+    return bin_dir, home
+
+
+def install_program(source: Path, bin_dir: Path, user: TestUser) -> Path:
+    """A copy of a test program the user may run; when the user is dedicated it cannot read
+    it (the kernel loads it all the same), so no case reads the compiled code of others."""
+    destination = bin_dir / source.name
+    tmp = bin_dir / (source.name + ".tmp")
+    shutil.copyfile(source, tmp)
+    os.chmod(tmp, 0o711 if user.dedicated else 0o755)
+    os.replace(tmp, destination)
+    return destination
+
+
+def case_filter(name: str) -> str:
+    """doctest's --test-case filter for this case: a comma separates filters (and only
+    doctest 2.4.9 and later read an escaped one), so a comma or a backslash becomes the
+    wildcard '?', which matches it in every version."""
+    return re.sub(r"[,\\]", "?", name)
+
+
+def _read_output(f) -> str:
+    """The beginning and the end of a case's output file."""
+    size = f.seek(0, os.SEEK_END)
+    f.seek(0)
+    if size <= 2 * OUTPUT_KEPT:
+        return f.read().decode("utf-8", "replace")
+    head = f.read(OUTPUT_KEPT)
+    f.seek(size - OUTPUT_KEPT)
+    tail = f.read()
+    return (head.decode("utf-8", "replace") + f"\n... ({size - 2 * OUTPUT_KEPT} bytes left out) ...\n"
+            + tail.decode("utf-8", "replace"))
+
+
+def run_case(command: Sequence[str], cwd: Optional[str], timeout: float, memory_mb: int,
+             user: Optional[TestUser] = None, env: Optional[Dict[str, str]] = None,
+             doctest: bool = False) -> Tuple[str, str, float]:
+    """Runs one test case in its own process group; returns (status, output, seconds) with
+    status passed, failed, crashed or timeout. With `doctest`, an exit code of 0 passes only
+    when doctest's summary reports a case passed and none failed."""
+    user = user or TestUser("", 0, 0)
+    t0 = time.monotonic()
+    # the output goes to a file, not a pipe: a process left running that holds it open does
+    # not keep the case waiting, and only its beginning and end are read back
+    with tempfile.TemporaryFile() as out:
+        try:
+            p = subprocess.Popen(user.command(command), cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
+                                 stdin=subprocess.DEVNULL, start_new_session=True, env=env,
+                                 preexec_fn=user.limits(memory_mb) if os.name == "posix" else None)
+        except OSError as e:
+            return "crashed", f"could not start the test: {e}", 0.0
+        try:
+            p.wait(timeout=max(timeout, 0.1))
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            timed_out = True
+        kill_group(p)          # the case's own processes that are still running
+        p.wait()
+        text = _read_output(out)
+    seconds = time.monotonic() - t0
+    if timed_out:
+        return "timeout", text + f"\n(stopped: still running after {timeout:.0f} s)", seconds
+    if p.returncode == 0:
+        if doctest:
+            summaries = SUMMARY_RE.findall(text)
+            if not summaries:
+                return "failed", text + ("\n(the program ended before doctest reported the case: "
+                                         "something in it ended the program early)"), seconds
+            _, passed, failed = (int(x) for x in summaries[-1])
+            if passed < 1 or failed > 0:
+                return "failed", text + "\n(doctest ran no case of this name)", seconds
+        return "passed", text, seconds
+    if p.returncode < 0:
+        try:
+            name = signal.Signals(-p.returncode).name
+        except ValueError:
+            name = f"signal {-p.returncode}"
+        return "crashed", text + f"\n(crashed: {name})", seconds
+    return "failed", text, seconds
+
+
+def list_cases(program: Path, source: str, user: TestUser, env: Dict[str, str], cwd: Path,
+               timeout: float = 60) -> Tuple[List[str], str]:
+    """The doctest cases of a suite's program ([] and the reason when they cannot be listed),
+    listed by the program itself run as the test user, and checked against its source:
+    distinct names, as many as the source's TEST_CASE lines."""
+    status, out, _ = run_case([str(program), "--list-test-cases", "--no-version"], str(cwd), timeout, 0,
+                              user=user, env=env)
+    if status != "passed":
+        return [], f"its cases could not be listed ({status}): " + out.strip()[-500:]
+    names = [l for l in out.splitlines()
+             if l.strip() and not l.startswith("[doctest]") and not l.startswith("=====")]
+    if "TEST_CASE_TEMPLATE" not in source:
+        expected = len(re.findall(r"^\s*(?:TEST_CASE|TEST_CASE_FIXTURE|SCENARIO)\s*\(", source, re.MULTILINE))
+        if len(names) != expected or len(set(names)) != len(names):
+            return [], (f"expected {expected} distinct cases, as in its source, found {len(names)} "
+                        f"listed by its program")
+    return names, ""
