@@ -67,17 +67,17 @@ std::string film_hint(const rt::ray_generator& gen, const rt::ray& r, double x, 
     const double dx = double(found.x) - x, dy = double(found.y) - y;
     if (!std::isfinite(dx) || !std::isfinite(dy))
         return "";
-    auto near = [](double a, double b) { return std::fabs(a - b) < 1e-3; };
-    auto half = [&](double shift) { return near(std::fabs(shift), 0.5) || near(shift, 0); };
+    auto close_to = [](double a, double b) { return std::fabs(a - b) < 1e-3; };
+    auto half = [&](double shift) { return close_to(std::fabs(shift), 0.5) || close_to(shift, 0); };
     std::ostringstream out;
     out << "; found the ray through the film position " << rt_doctest::text(found) << " instead of ("
         << x << ", " << y << ")";
-    if (half(dx) && half(dy) && !(near(dx, 0) && near(dy, 0)))
+    if (half(dx) && half(dy) && !(close_to(dx, 0) && close_to(dy, 0)))
         out << ", half a pixel off: a half-pixel shift. generate_ray(gen, x, y) takes the film position as it is, "
                "u = l + (r - l) x / nx, v = b + (t - b) y / ny; pixel_ray(gen, i, j) already passes the pixel's "
                "centre (i + 0.5, j + 0.5), so adding (or taking away) 0.5 in generate_ray moves every ray by half "
                "a pixel";
-    else if (near(dx, 0) && near(double(found.y), gen.ny - y))
+    else if (close_to(dx, 0) && close_to(double(found.y), gen.ny - y))
         out << ", (x, ny - y): rows counted from the top; the book counts y from the bottom row, "
                "v = b + (t - b) y / ny";
     return out.str();
