@@ -39,6 +39,20 @@ file(WRITE "${folder}/cassé-ø.scene"
 file(WRITE "${folder}/cassé-ø.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
 file(SHA256 "${folder}/scène-ñ.scene" scene_before)
 
+# Runs `program` on `scene` in `folder`: exit code 1 and a message naming
+# `named`, or a line in `problems`.
+function(expect_refusal program scene named)
+  get_filename_component(name "${program}" NAME_WE)
+  execute_process(COMMAND ${EMULATOR} "${program}" "${scene}" -o "x.ppm"
+                  WORKING_DIRECTORY "${folder}" RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT 120)
+  string(FIND "${err}" "${named}" at)
+  if(NOT "${code}" STREQUAL "1" OR at EQUAL -1)
+    string(APPEND problems "\n- ${name} ${scene}: expected exit code 1 and a message naming '${named}', "
+                           "found exit code '${code}' and: ${err}")
+    set(problems "${problems}" PARENT_SCOPE)
+  endif()
+endfunction()
+
 set(problems "")
 foreach(program IN LISTS PROGRAMS)
   get_filename_component(name "${program}" NAME_WE)
@@ -60,23 +74,10 @@ foreach(program IN LISTS PROGRAMS)
     endif()
   endif()
 
-  # a missing input is named as typed
-  execute_process(COMMAND ${EMULATOR} "${program}" "absent-é.scene" -o "x.ppm"
-                  WORKING_DIRECTORY "${folder}" RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT 120)
-  string(FIND "${err}" "absent-é.scene" at)
-  if(NOT "${code}" STREQUAL "1" OR at EQUAL -1)
-    string(APPEND problems "\n- ${name} absent-é.scene: expected exit code 1 and a message naming 'absent-é.scene', "
-                           "found exit code '${code}' and: ${err}")
-  endif()
-
-  # an error inside an OBJ file that a scene names: its location as written
-  execute_process(COMMAND ${EMULATOR} "${program}" "cassé-ø.scene" -o "x.ppm"
-                  WORKING_DIRECTORY "${folder}" RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET TIMEOUT 120)
-  string(FIND "${err}" "cassé-ø.obj:4:" at)
-  if(NOT "${code}" STREQUAL "1" OR at EQUAL -1)
-    string(APPEND problems "\n- ${name} cassé-ø.scene: expected exit code 1 and a message naming 'cassé-ø.obj:4:', "
-                           "found exit code '${code}' and: ${err}")
-  endif()
+  # a missing input is named as typed; an error inside an OBJ file that a
+  # scene names, at its location as written
+  expect_refusal("${program}" "absent-é.scene" "absent-é.scene")
+  expect_refusal("${program}" "cassé-ø.scene" "cassé-ø.obj:4:")
 endforeach()
 
 file(SHA256 "${folder}/scène-ñ.scene" scene_after)
