@@ -30,11 +30,11 @@
 #include <rt/scene.hpp>
 #include <rt/vec.hpp>
 
-// rt::accelerator lives in the inline namespace of this unit's fast path
+// rt::accelerator lives in the inline namespace of this unit's fast paths
 // (rt/bvh/abi_begin.hpp: no intrinsics, so this header stays light)
 #include <rt/bvh/abi_begin.hpp>
 namespace rt {
-inline namespace RT_BVH_ABI {
+inline namespace RT_BVH_ACCELERATOR_ABI {
 class accelerator;
 }
 } // namespace rt
