@@ -124,6 +124,12 @@ private:
     std::shared_ptr<const rt::accelerator> impl_;
 };
 
+/// The BVH's fast path the world's accelerator takes on this CPU, as
+/// support_world.cpp is compiled: "avx2 (8-wide)", "sse (4-wide)" or "scalar
+/// (4-wide)" (rt::accelerator::automatic_path; x86-64 builds without -mavx2
+/// pick avx2 or sse at run time, rt/bvh/dispatch.hpp).
+std::string simd_path();
+
 /// A ray through a film position (pixels from the bottom-left corner).
 using ray_source = std::function<rt::ray(rt::real, rt::real)>;
 /// The colour a ray brings back.
