@@ -94,18 +94,20 @@ TEST_CASE("without Ize's factor the slab test culls boxes that a ray touches at 
 
 namespace {
 
-/// Whether two accelerators hold the same tree: nodes, boxes, leaves and the primitives of their blocks.
-bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
+/// Whether two trees of one width are the same: nodes, boxes, leaves and the primitives of their blocks.
+template <class Tree>
+bool same_nodes(const Tree& ta, const Tree& tb)
 {
-    const auto& na = a.tree().nodes();
-    const auto& nb = b.tree().nodes();
-    const auto& pa = a.tree().blocks();
-    const auto& pb = b.tree().blocks();
+    const auto& na = ta.nodes();
+    const auto& nb = tb.nodes();
+    const auto& pa = ta.blocks();
+    const auto& pb = tb.blocks();
     if (na.size() != nb.size() || pa.size() != pb.size())
         return false;
-    bool same = a.stats().depth == b.stats().depth && a.stats().references == b.stats().references;
+    constexpr int width = int(sizeof(na[0].child) / sizeof(na[0].child[0]));
+    bool same = true;
     for (std::size_t i = 0; i < na.size(); ++i)
-        for (int c = 0; c < rt::bvh_width; ++c) {
+        for (int c = 0; c < width; ++c) {
             same = same && na[i].child[c] == nb[i].child[c] && na[i].count[c] == nb[i].count[c];
             for (int row = 0; row < 6; ++row)
                 same = same && na[i].bounds[row][c] == nb[i].bounds[row][c];
@@ -114,6 +116,21 @@ bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
         for (int lane = 0; lane < 4; ++lane)
             same = same && pa[i].id[lane] == pb[i].id[lane];
     return same;
+}
+
+/// Whether two accelerators hold the same tree (of the width each walks: one path for both, here).
+bool same_tree(const rt::accelerator& a, const rt::accelerator& b)
+{
+    if (a.path() != b.path() || a.stats().depth != b.stats().depth || a.stats().references != b.stats().references)
+        return false;
+    return a.with_tree([&](const auto& ta) {
+        return b.with_tree([&](const auto& tb) {
+            if constexpr (std::is_same_v<decltype(ta), decltype(tb)>)
+                return same_nodes(ta, tb);
+            else
+                return false;
+        });
+    });
 }
 
 } // namespace
@@ -814,10 +831,13 @@ TEST_CASE("flat and BVH accelerators, scalar and SIMD traversal agree hit for hi
             const bool flat_hit = flat.closest_hit(r, 0, rt::infinity, from_flat);
             const bool tree_hit = tree.closest_hit(r, 0, rt::infinity, from_tree);
             rt::primitive_hit scalar_hit, simd_hit;
-            const bool tree_scalar = tree.tree().closest_scalar(r, 0, rt::infinity, scalar_hit);
-            const bool tree_simd = tree.tree().closest(r, 0, rt::infinity, simd_hit);
-            bool agree = flat_hit == tree_hit && tree_scalar == tree_simd && tree_hit == tree_simd &&
-                         tree.tree().any_scalar(r, 0, rt::infinity) == tree.tree().any(r, 0, rt::infinity) &&
+            bool tree_scalar = false, tree_simd = false, any_agree = false;
+            tree.with_tree([&](const auto& t) { // the tree of the path the accelerator walks
+                tree_scalar = t.closest_scalar(r, 0, rt::infinity, scalar_hit);
+                tree_simd = t.closest(r, 0, rt::infinity, simd_hit);
+                any_agree = t.any_scalar(r, 0, rt::infinity) == t.any(r, 0, rt::infinity);
+            });
+            bool agree = flat_hit == tree_hit && tree_scalar == tree_simd && tree_hit == tree_simd && any_agree &&
                          flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity);
             if (agree && flat_hit)
                 agree = same_hit(from_flat, from_tree) && scalar_hit.t == simd_hit.t && scalar_hit.id == simd_hit.id;

@@ -211,8 +211,10 @@ TEST_CASE("a sliver just in front of a spawned ray blocks it, and the ray still 
         CHECK(rec.shape == 1);
         rt::primitive_hit scalar;
         if (kind == rt::accelerator_kind::bvh) {
-            CHECK(world.tree().any_scalar(up, 0, 5));
-            CHECK(world.tree().closest_scalar(up, 0, 5, scalar));
+            world.with_tree([&](const auto& tree) {
+                CHECK(tree.any_scalar(up, 0, 5));
+                CHECK(tree.closest_scalar(up, 0, 5, scalar));
+            });
         }
     }
 

@@ -31,6 +31,10 @@
 
 #include "command_line.hpp" // stages/common
 
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+#include <rt/accelerator.hpp> // the BVH path of the machine line
+#endif
+
 #ifndef RT_BENCH_FLAGS
 #define RT_BENCH_FLAGS "unknown"
 #endif
@@ -147,6 +151,12 @@ inline std::string machine_line()
     s << cpu_model() << ", " << hardware_threads() << " hardware threads, " << cpu_simd() << "; " << compiler()
       << ", " << RT_BENCH_BUILD_TYPE << " " << flags << "; rt::real = "
       << (sizeof(rt::real) == 4 ? "float" : "double");
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+    // which walk rt::accelerator takes here: a build without -march=native
+    // picks it at run time (include/rt/bvh/dispatch.hpp)
+    s << "; BVH path " << rt::describe(rt::accelerator::automatic_path())
+      << (rt::accelerator::dispatches ? " (dispatched)" : "");
+#endif
     return s.str();
 }
 

@@ -24,6 +24,14 @@
 // are computed again from the ray relative to the centre, in a wider type
 // (refine_sphere_hit), so the normal's direction does not depend on how far
 // the ray came from.
+//
+// The BVH is walked by one of the fast paths (bvh_path): 8-wide nodes in AVX2
+// where the CPU has it, else 4-wide nodes in SSE (x86-64), else 4-wide nodes
+// one value at a time (arm64, rt::real = double). A program compiled without
+// AVX2 in its target (-O2 alone) holds both x86-64 paths and picks one when
+// the accelerator is built, by asking the CPU (bvh/dispatch.hpp); simd_path()
+// says which. All of them return the same hits, bit for bit
+// (tests/library_dispatch.cpp).
 #pragma once
 
 #include <cstddef>
@@ -34,6 +42,8 @@
 #include <vector>
 
 #include "bvh.hpp"
+#include "bvh/builtins.hpp"
+#include "bvh/dispatch.hpp"
 #include "bvh/hit_fill.hpp"
 #include "enum_names.hpp"
 #include "error.hpp"
@@ -46,7 +56,7 @@
 #include "triangle_shape.hpp"
 #include "vec.hpp"
 
-#include "bvh/simd_begin.hpp" // RT_BVH_INLINE, until bvh/simd_end.hpp
+#include "bvh/simd_begin.hpp" // RT_BVH_INLINE, RT_BVH_DISPATCH, until bvh/simd_end.hpp
 
 namespace rt {
 
@@ -75,13 +85,39 @@ inline accelerator_kind parse_accelerator_kind(const std::string& word)
     throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
 }
 
+/// The fast path an accelerator walks its BVH with (see the top of this file).
+enum class bvh_path {
+    automatic, ///< the fastest this program runs on this CPU (accelerator::automatic_path)
+    scalar,    ///< 4-wide nodes, one value at a time: no SSE (arm64, rt::real = double)
+    sse,       ///< 4-wide nodes in SSE (x86-64)
+    avx2       ///< 8-wide nodes in AVX2, where the CPU has it
+};
+
+/// The names of the BVH paths; the first is the default.
+inline constexpr enum_name<bvh_path> bvh_path_names[] = {
+    {bvh_path::automatic, "auto"}, {bvh_path::scalar, "scalar"}, {bvh_path::sse, "sse"}, {bvh_path::avx2, "avx2"}};
+
+inline const char* name_of(bvh_path path) { return name_in(bvh_path_names, path); }
+
+/// "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)": a path and its node width, for reports.
+inline const char* describe(bvh_path path)
+{
+    switch (path) {
+    case bvh_path::avx2: return "avx2 (8-wide)";
+    case bvh_path::sse: return "sse (4-wide)";
+    case bvh_path::scalar: return "scalar (4-wide)";
+    case bvh_path::automatic: break;
+    }
+    return "auto";
+}
+
 /// Which shape, and which triangle inside a mesh, a packed primitive came from.
 struct primitive_ref {
     std::uint32_t shape = 0;
     std::uint32_t primitive = 0;
 };
 
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+inline namespace RT_BVH_ACCELERATOR_ABI { // this unit's paths (bvh/abi_begin.hpp)
 
 /// The scene-level intersection: built once from a scene, then queried by
 /// every ray. The scene must outlive the accelerator and must not change while
@@ -90,9 +126,11 @@ class accelerator {
 public:
     accelerator() = default;
 
+    /// `path`: the BVH's fast path (bvh_path::automatic: the fastest this
+    /// program runs on this CPU); a path it does not run is an rt::error.
     explicit accelerator(const scene& s, accelerator_kind kind = accelerator_kind::automatic,
-                         const bvh_options& options = {})
-        : scene_(&s)
+                         const bvh_options& options = {}, bvh_path path = bvh_path::automatic)
+        : scene_(&s), path_(checked_path(path))
     {
         std::size_t count = 0;
         for (const shape& item : s.shapes)
@@ -136,6 +174,10 @@ public:
         first_id_.push_back(std::uint32_t(count));
         if (kind_ == accelerator_kind::flat)
             flat_.assign(prims.begin(), prims.end());
+#if RT_BVH_DISPATCH
+        else if (path_ == bvh_path::avx2)
+            wide_.emplace(prims.data(), prims.size(), options); // bvh/dispatch.hpp
+#endif
         else
             tree_ = bvh(prims.data(), prims.size(), options);
     }
@@ -145,8 +187,15 @@ public:
     RT_BVH_INLINE bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
     {
         primitive_hit h;
-        const bool found = kind_ == accelerator_kind::flat ? closest_flat(flat_, r, tmin, tmax, h)
-                                                           : tree_.closest(r, tmin, tmax, h);
+        bool found = false;
+        if (kind_ == accelerator_kind::flat)
+            found = closest_flat(flat_, r, tmin, tmax, h);
+#if RT_BVH_DISPATCH
+        else if (wide_) // the 8-wide walk, compiled for AVX2: a call, never inlined here
+            found = wide_->closest(r, tmin, tmax, h);
+#endif
+        else
+            found = tree_.closest(r, tmin, tmax, h);
         if (!found)
             return false;
         complete(r, tmin, tmax, h, rec);
@@ -157,15 +206,67 @@ public:
     /// because it stops at the first hit (shadow rays).
     bool any_hit(const ray& r, real tmin, real tmax) const
     {
-        return kind_ == accelerator_kind::flat ? any_flat(flat_, r, tmin, tmax) : tree_.any(r, tmin, tmax);
+        if (kind_ == accelerator_kind::flat)
+            return any_flat(flat_, r, tmin, tmax);
+#if RT_BVH_DISPATCH
+        if (wide_)
+            return wide_->any(r, tmin, tmax);
+#endif
+        return tree_.any(r, tmin, tmax);
     }
 
     /// flat or bvh (automatic is resolved when the accelerator is built).
     accelerator_kind kind() const { return kind_; }
     std::size_t primitive_count() const { return first_id_.empty() ? 0 : first_id_.back(); }
     /// The BVH's statistics (all zero for a flat accelerator).
-    const bvh_stats& stats() const { return tree_.stats(); }
-    const bvh& tree() const { return tree_; }
+    const bvh_stats& stats() const
+    {
+#if RT_BVH_DISPATCH
+        if (wide_)
+            return wide_->stats();
+#endif
+        return tree_.stats();
+    }
+
+    /// The fast path its BVH is walked with (never automatic; a flat
+    /// accelerator has the path it would have had, and tests its list one
+    /// primitive at a time).
+    bvh_path path() const { return path_; }
+    /// describe(path()): "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)".
+    const char* simd_path() const { return describe(path_); }
+
+    /// Whether this program holds two paths and picks one per CPU (x86-64
+    /// compiled without AVX2: bvh/dispatch.hpp): sse or avx2.
+    static constexpr bool dispatches = RT_BVH_DISPATCH != 0;
+
+    /// The path bvh_path::automatic takes in this program on this CPU: avx2
+    /// where the program holds it and the CPU runs it, else sse on x86-64, else scalar.
+    static bvh_path automatic_path()
+    {
+#if RT_BVH_DISPATCH
+        return detail::cpu_runs_avx2() ? bvh_path::avx2 : bvh_path::sse;
+#elif RT_BVH_AVX2
+        return bvh_path::avx2;
+#elif RT_BVH_SSE
+        return bvh_path::sse;
+#else
+        return bvh_path::scalar;
+#endif
+    }
+
+    /// Calls f(tree) with the BVH it walks (empty for a flat accelerator) and
+    /// returns what f returns, the same type for either width: an rt::bvh, or
+    /// where the program dispatches (bvh/dispatch.hpp) on the avx2 path an
+    /// rt::bvh_w8::bvh. For the tests, which look at the tree itself.
+    template <class F>
+    decltype(auto) with_tree(F&& f) const
+    {
+#if RT_BVH_DISPATCH
+        if (wide_)
+            return f(*wide_);
+#endif
+        return f(tree_);
+    }
 
     /// The shape and primitive of a packed primitive's id (id < primitive_count()).
     /// Ids are given in scene order, so shape s holds the ids from
@@ -186,6 +287,25 @@ public:
     }
 
 private:
+    /// `asked`, or automatic_path() for automatic; an rt::error for a path
+    /// this program does not hold or this CPU does not run.
+    static bvh_path checked_path(bvh_path asked)
+    {
+        const bvh_path best = automatic_path();
+        if (asked == bvh_path::automatic || asked == best)
+            return best;
+#if RT_BVH_DISPATCH
+        if (asked == bvh_path::sse) // the dispatching program's other path, on any x86-64
+            return asked;
+        throw error(std::string("expected a BVH path this CPU runs (auto or sse: it has no AVX2), found '") +
+                    name_of(asked) + "'");
+#else
+        throw error(std::string("expected a BVH path this program holds (auto or ") + name_of(best) +
+                    ": it was compiled " + (best == bvh_path::avx2 ? "for AVX2" : "without dispatch") +
+                    "), found '" + name_of(asked) + "'");
+#endif
+    }
+
     // inlined with closest_hit: a call kept the record's inputs and outputs in
     // memory (closest hits 1-3% faster inlined)
     RT_BVH_INLINE void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
@@ -217,12 +337,18 @@ private:
 
     const scene* scene_ = nullptr;
     accelerator_kind kind_ = accelerator_kind::flat;
+    bvh_path path_ = automatic_path();
     std::vector<std::uint32_t> first_id_; ///< shape s's first id, then the number of ids (see reference())
     std::vector<packed_primitive> flat_;
-    bvh tree_;
+    bvh tree_; ///< the BVH of this unit's width (empty on the dispatched avx2 path)
+#if RT_BVH_DISPATCH
+    /// The 8-wide BVH, compiled for AVX2 (bvh/dispatch.hpp): made, walked and
+    /// destroyed only on the avx2 path, so never on a CPU without AVX2.
+    std::optional<bvh_w8::bvh> wide_;
+#endif
 };
 
-} // namespace RT_BVH_ABI
+} // namespace RT_BVH_ACCELERATOR_ABI
 
 } // namespace rt
 

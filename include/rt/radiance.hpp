@@ -29,7 +29,7 @@
 #include "thin_lens.hpp"
 #include "vec.hpp"
 
-#include "bvh/abi_begin.hpp" // RT_BVH_ABI, until bvh/simd_end.hpp
+#include "bvh/abi_begin.hpp" // RT_BVH_ACCELERATOR_ABI, until bvh/simd_end.hpp
 
 namespace rt {
 
@@ -58,7 +58,7 @@ inline ray lens_ray(const scene& s, const ray& pinhole, pcg32& random)
     return thin_lens_ray(pinhole, basis, s.lens.aperture, s.lens.focus, concentric_disk(xi1, xi2));
 }
 
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+inline namespace RT_BVH_ACCELERATOR_ABI { // rt::accelerator's (bvh/abi_begin.hpp)
 
 /// An accelerator seen through a counter of the queries made with it, so a
 /// render reports its shadow and mirror rays as well as its camera rays. One
@@ -79,7 +79,7 @@ struct counting_accelerator {
     }
 };
 
-} // namespace RT_BVH_ABI
+} // namespace RT_BVH_ACCELERATOR_ABI
 
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
 /// `accel`: the shaded colour of stages 05-07 (rt::ray_color; rt::ray_color_glass,

@@ -207,10 +207,14 @@ int main(int argc, char** argv)
         bar.finish();
 
         stage::save_encoded(set.output, result.pixels, render.aov, render.encoding);
-        if (!set.quiet)
+        if (!set.quiet) {
             std::cerr << "wrote " << set.output << ": " << rt::summary_line(result.stats) << " ("
                       << rt::name_of(options.sampler) << ", " << rt::name_of(options.reconstruction.kind) << " "
-                      << options.reconstruction.radius << ")\n";
+                      << options.reconstruction.radius << ")";
+            if (set.pattern == pattern_kind::none && render.aov != rt::aov_kind::rays) // the BVH traced it
+                std::cerr << ", BVH " << stage::simd_path();
+            std::cerr << "\n";
+        }
         return 0;
     });
 }

@@ -30,11 +30,11 @@
 #include <rt/scene.hpp>
 #include <rt/vec.hpp>
 
-// rt::accelerator lives in the inline namespace of this unit's fast path
+// rt::accelerator lives in the inline namespace of this unit's fast paths
 // (rt/bvh/abi_begin.hpp: no intrinsics, so this header stays light)
 #include <rt/bvh/abi_begin.hpp>
 namespace rt {
-inline namespace RT_BVH_ABI {
+inline namespace RT_BVH_ACCELERATOR_ABI {
 class accelerator;
 }
 } // namespace rt
@@ -123,6 +123,12 @@ public:
 private:
     std::shared_ptr<const rt::accelerator> impl_;
 };
+
+/// The BVH's fast path the world's accelerator takes on this CPU, as
+/// support_world.cpp is compiled: "avx2 (8-wide)", "sse (4-wide)" or "scalar
+/// (4-wide)" (rt::accelerator::automatic_path; x86-64 builds without -mavx2
+/// pick avx2 or sse at run time, rt/bvh/dispatch.hpp).
+std::string simd_path();
 
 /// A ray through a film position (pixels from the bottom-left corner).
 using ray_source = std::function<rt::ray(rt::real, rt::real)>;

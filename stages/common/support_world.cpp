@@ -25,4 +25,6 @@ std::size_t world::primitives() const { return impl_->primitive_count(); }
 
 std::size_t world::nodes() const { return impl_->stats().nodes; }
 
+std::string simd_path() { return rt::describe(rt::accelerator::automatic_path()); }
+
 } // namespace stage

@@ -1,19 +1,25 @@
-// bvh/builtins.hpp - the two compiler builtins the fast path's build uses, one
-// name each, with a branch per compiler family and a portable fallback:
+// bvh/builtins.hpp - the compiler builtins the fast path uses, one name each,
+// with a branch per compiler family and a portable fallback:
 //
 //     const int s = rt::detail::highest_bit(17u);   // 4: 2^4 <= 17 < 2^5
 //     rt::detail::prefetch(&items[k + 8]);          // ask for a line we read soon
+//     if (rt::detail::cpu_runs_avx2()) ...          // the 8-wide path may run (bvh/dispatch.hpp)
 //
-// GCC and Clang: __builtin_clz and __builtin_prefetch (GCC manual, "Other
-// Built-in Functions"). MSVC: _BitScanReverse and, on x86/x64, _mm_prefetch with
-// _MM_HINT_T0 (Microsoft Learn, "_BitScanReverse", "_mm_prefetch"); MSVC is not
-// checked in CI. Elsewhere a loop, and no prefetch (a hint: it never changes a result).
+// GCC and Clang: __builtin_clz, __builtin_prefetch, __builtin_cpu_init and
+// __builtin_cpu_supports (GCC manual, "Other Built-in Functions" and "x86
+// Built-in Functions"). MSVC: _BitScanReverse, on x86/x64 _mm_prefetch with
+// _MM_HINT_T0, __cpuid, __cpuidex and _xgetbv (Microsoft Learn, "_BitScanReverse",
+// "_mm_prefetch", "__cpuid, __cpuidex", "_xgetbv"); MSVC is not checked in CI.
+// Elsewhere a loop, no prefetch (a hint: it never changes a result) and no AVX2.
 #pragma once
 
 #include <cstdint>
 
-#if defined(_MSC_VER) && !defined(__clang__)
-#include <intrin.h>
+#if defined(_MSC_VER)
+#include <intrin.h> // __cpuid, _BitScanReverse
+#if defined(_M_X64) || defined(_M_IX86)
+#include <immintrin.h> // _xgetbv, _mm_prefetch
+#endif
 #endif
 
 namespace rt {
@@ -45,6 +51,33 @@ inline void prefetch(const void* p)
     _mm_prefetch(static_cast<const char*>(p), _MM_HINT_T0);
 #else
     (void)p;
+#endif
+}
+
+/// Whether this CPU runs AVX2 code: the processor has AVX2 and the operating
+/// system saves the 256-bit registers (XGETBV's bits 1 and 2). GCC's and
+/// Clang's __builtin_cpu_supports("avx2") checks both; MSVC reads CPUID
+/// itself: leaf 1, ECX bit 27 (OSXSAVE) and bit 28 (AVX), XCR0 bits 1 and 2,
+/// then leaf 7, EBX bit 5 (AVX2) (Intel SDM vol. 1, 14.3 "Detection of Intel
+/// AVX instructions" and 14.7.1 for AVX2). False elsewhere (no x86).
+inline bool cpu_runs_avx2()
+{
+#if defined(_MSC_VER) && (defined(_M_X64) || defined(_M_IX86))
+    int info[4] = {0, 0, 0, 0};
+    __cpuid(info, 0);
+    if (info[0] < 7)
+        return false;
+    __cpuid(info, 1);
+    const bool osxsave = (info[2] & (1 << 27)) != 0, avx = (info[2] & (1 << 28)) != 0;
+    if (!osxsave || !avx || (_xgetbv(0) & 6) != 6)
+        return false;
+    __cpuidex(info, 7, 0);
+    return (info[1] & (1 << 5)) != 0;
+#elif (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+    __builtin_cpu_init(); // idempotent; needed only before constructors ran
+    return __builtin_cpu_supports("avx2") != 0;
+#else
+    return false;
 #endif
 }
 

@@ -15,7 +15,7 @@
 //   layout.hpp          wide nodes (8 children with AVX2, else 4), leaf blocks
 //   box_test.hpp        the robust slab test (Williams et al. 2005, Ize 2013)
 //   build_options.hpp   bvh_options, bvh_stats, the binary tree
-//   builtins.hpp        the compiler's bit scan and prefetch, one name each
+//   builtins.hpp        the compiler's bit scan, prefetch and CPU test, one name each
 //   build_store.hpp     its nodes and references, written by all the build's threads
 //   sah_bins.hpp        the SAH's bins and sweep, the partition (SSE / scalar)
 //   spatial_split.hpp   planes that cut large triangles (Stich et al. 2009)
@@ -28,6 +28,7 @@
 //   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
 //   hit_fill.hpp        a hit's record from its block (SSE), for rt::accelerator
 //   bvh.hpp             this file: build, then closest() and any()
+//   dispatch.hpp        the 8-wide path again, for AVX2 CPUs, in a unit built without AVX2
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
 //     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
@@ -43,7 +44,8 @@
 // chosen by one jump on the mask of children met, whose cases know their
 // children at compile time (descend.hpp): on coherent rays the jump is
 // predicted and the next node loads before the box test has finished.
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <algorithm>
 #include <cmath>
@@ -73,9 +75,15 @@
 #include "wide_collapse.hpp"
 
 #include "abi_begin.hpp" // RT_BVH_ABI, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_BVH_W8) : !defined(RT_BVH_BVH_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_BVH_W8
+#else
+#define RT_BVH_BVH_W4
+#endif
 
 namespace rt {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// A BVH over packed primitives (see the top of this file). Built once; its
 /// queries are const and safe to run from many threads at once.
@@ -249,7 +257,7 @@ private:
                         const std::uint32_t n = std::min<std::uint32_t>(4, leaf.count - done);
                         for (std::uint32_t lane = 0; lane < n; ++lane)
                             lanes[lane] = &prims[items[leaf.first_item + done + lane].index];
-                        blocks_[leaf.first_block + done / 4] = pack_triangle_block(lanes, n);
+                        blocks_[leaf.first_block + done / 4] = RT_BVH_ABI::pack_triangle_block(lanes, n); // (layout.hpp)
                     }
                 }
             },
@@ -353,5 +361,7 @@ private:
 
 } // namespace RT_BVH_ABI
 } // namespace rt
+
+#endif // RT_BVH_BVH_W8 / _W4
 
 #include "simd_end.hpp"

@@ -13,7 +13,8 @@
 //    one or two children of an 8-wide node, the rest in SIMD): where the jump
 //    is predicted, the next node loads before the box test has finished.
 // The measurements are in docs/performance.md, experiment 6.
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <cstdint>
 #include <cstring>
@@ -22,10 +23,16 @@
 #include "layout.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_DESCEND_W8) : !defined(RT_BVH_DESCEND_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_DESCEND_W8
+#else
+#define RT_BVH_DESCEND_W4
+#endif
 
 namespace rt {
 namespace detail {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The children waiting during a traversal and the distances where the ray
 /// enters them, as three arrays, so the 8-wide descent writes each with one
@@ -306,5 +313,7 @@ RT_BVH_INLINE void descend(int mask, const bvh_node& node, const real tnear[], S
 } // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
+
+#endif // RT_BVH_DESCEND_W8 / _W4
 
 #include "simd_end.hpp"

@@ -20,7 +20,8 @@
 //    packed: a closest hit's record reads its normal next to the corners
 //    instead of computing it in double at every hit (a separate array of
 //    normals missed the cache on incoherent rays).
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <cstddef>
 #include <cstdint>
@@ -32,9 +33,15 @@
 #include "packed.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_AVX, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_LAYOUT_W8) : !defined(RT_BVH_LAYOUT_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_LAYOUT_W8
+#else
+#define RT_BVH_LAYOUT_W4
+#endif
 
 namespace rt {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// Children per node: 8 where AVX2 is there (RT_BVH_AVX2), else 4.
 constexpr int bvh_width = RT_BVH_AVX2 ? 8 : 4;
@@ -57,10 +64,48 @@ struct alignas(32) triangle_block {
     vec3 n[4];
 };
 
+/// One node (see the top of this file): the boxes of up to bvh_width
+/// children, plane by plane, and their references.
+struct alignas(64) bvh_node {
+    /// bounds[2 k][c] = lo of child c on axis k, bounds[2 k + 1][c] = hi; an
+    /// unused child has the empty box lo = +inf, hi = -inf, which no ray meets.
+    real bounds[6][bvh_width];
+    std::uint32_t child[bvh_width];  ///< an inner child's node index, or leaf_flag | its first primitive
+    std::uint32_t count[bvh_width];  ///< a leaf's number of primitives (0 for inner children)
+};
+
+/// Set in bvh_node::child for a leaf.
+constexpr std::uint32_t leaf_flag = 0x80000000u;
+
 } // namespace RT_BVH_ABI
 
+#if defined(RT_BVH_AVX2_SECTION)
+// The AVX2 section of bvh/dispatch.hpp opens rt::bvh_w8 and rt::detail::bvh_w8
+// as plain namespaces (rt::bvh stays this unit's 4-wide tree), so a name
+// looked up from them reaches the inline bvh_w4 before anything else in rt.
+// These declarations make them find their own width first: its detail code
+// the public types (a using-declaration is found before the enclosing
+// namespaces), and its public code, through detail::, its own detail before
+// rt::detail (a qualified lookup follows a namespace's using-directives only
+// for names it does not hold).
 namespace detail {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+namespace RT_BVH_ABI {
+using ::rt::RT_BVH_ABI::bvh_node;
+using ::rt::RT_BVH_ABI::bvh_width;
+using ::rt::RT_BVH_ABI::leaf_flag;
+using ::rt::RT_BVH_ABI::triangle_block;
+using namespace ::rt::detail;
+} // namespace RT_BVH_ABI
+} // namespace detail
+namespace RT_BVH_ABI {
+namespace detail {
+using namespace ::rt::detail::RT_BVH_ABI;
+} // namespace detail
+} // namespace RT_BVH_ABI
+#endif
+
+namespace detail {
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// triangle_normal (triangle_shape.hpp) of the four lanes of `b` at once, in
 /// four lanes of double with AVX: the same operations in the same order, so
@@ -107,7 +152,7 @@ inline bool block_normals(triangle_block& b)
 } // namespace RT_BVH_ABI
 } // namespace detail
 
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The block of the primitives *lanes[0 .. n), n <= 4.
 inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4], std::size_t n)
@@ -143,23 +188,13 @@ inline triangle_block pack_triangle_block(const packed_primitive* prims, std::si
     const packed_primitive* lanes[4] = {};
     for (std::size_t lane = 0; lane < n && lane < 4; ++lane)
         lanes[lane] = prims + first + lane;
-    return pack_triangle_block(lanes, n);
+    return RT_BVH_ABI::pack_triangle_block(lanes, n); // qualified: rt's inline bvh_w4 holds one too (bvh/dispatch.hpp)
 }
 
-/// One node (see the top of this file): the boxes of up to bvh_width
-/// children, plane by plane, and their references.
-struct alignas(64) bvh_node {
-    /// bounds[2 k][c] = lo of child c on axis k, bounds[2 k + 1][c] = hi; an
-    /// unused child has the empty box lo = +inf, hi = -inf, which no ray meets.
-    real bounds[6][bvh_width];
-    std::uint32_t child[bvh_width];  ///< an inner child's node index, or leaf_flag | its first primitive
-    std::uint32_t count[bvh_width];  ///< a leaf's number of primitives (0 for inner children)
-};
-
-/// Set in bvh_node::child for a leaf.
-constexpr std::uint32_t leaf_flag = 0x80000000u;
 
 } // namespace RT_BVH_ABI
 } // namespace rt
+
+#endif // RT_BVH_LAYOUT_W8 / _W4
 
 #include "simd_end.hpp"

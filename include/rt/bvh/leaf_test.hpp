@@ -9,7 +9,8 @@
 // edge functions of a block with a possible hit computed in double, two lanes
 // per register or four with AVX); elsewhere, and for rt::real = double, one
 // lane at a time (intersect_block_scalar).
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <cstdint>
 #include <limits>
@@ -21,10 +22,16 @@
 #include "packed.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX and the intrinsics, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_LEAF_TEST_W8) : !defined(RT_BVH_LEAF_TEST_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_LEAF_TEST_W8
+#else
+#define RT_BVH_LEAF_TEST_W4
+#endif
 
 namespace rt {
 namespace detail {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// The ray as the SIMD leaf test reads it, besides the watertight ray itself:
 /// the origin and the shear in all four lanes.
@@ -329,5 +336,7 @@ RT_BVH_INLINE int intersect_block(const triangle_block& b, const leaf_ray& r, co
 } // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
+
+#endif // RT_BVH_LEAF_TEST_W8 / _W4
 
 #include "simd_end.hpp"

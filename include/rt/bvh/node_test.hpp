@@ -6,9 +6,11 @@
 // test of box_test.hpp, the eight boxes of a node at once in AVX2, or its four
 // in SSE, or one at a time (the reference the tests compare them with).
 // Which of the children met a ray enters, and in what order: descend.hpp.
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <cstddef>
+#include <cstdint>
 
 #include "../config.hpp"
 #include "../ray.hpp"
@@ -16,10 +18,20 @@
 #include "layout.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_NODE_TEST_W8) : !defined(RT_BVH_NODE_TEST_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_NODE_TEST_W8
+#else
+#define RT_BVH_NODE_TEST_W4
+#endif
 
 namespace rt {
 namespace detail {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+
+// this section's own node, also in bvh/dispatch.hpp's second section
+static_assert(bvh_width == (RT_BVH_AVX2 ? 8 : 4) && sizeof(bvh_node::child) == bvh_width * sizeof(std::uint32_t),
+              "expected the node of this section's width (bvh/layout.hpp)");
 
 #if RT_BVH_SSE
 constexpr bool bvh_uses_sse = true;
@@ -143,5 +155,7 @@ inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin
 } // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
+
+#endif // RT_BVH_NODE_TEST_W8 / _W4
 
 #include "simd_end.hpp"

@@ -1,5 +1,6 @@
 // bvh/wide_collapse.hpp - the binary tree made wide (layout.hpp's nodes, bvh_width children).
-#pragma once
+// (No #pragma once: a unit may compile this file once per width, bvh/dispatch.hpp;
+// the guard after the section opens keeps one copy of each.)
 
 #include <algorithm>
 #include <cstdint>
@@ -12,10 +13,16 @@
 #include "parallel_fill.hpp"
 
 #include "abi_begin.hpp" // RT_BVH_ABI, until simd_end.hpp
+#if RT_BVH_AVX2 ? !defined(RT_BVH_WIDE_COLLAPSE_W8) : !defined(RT_BVH_WIDE_COLLAPSE_W4)
+#if RT_BVH_AVX2
+#define RT_BVH_WIDE_COLLAPSE_W8
+#else
+#define RT_BVH_WIDE_COLLAPSE_W4
+#endif
 
 namespace rt {
 namespace detail {
-inline namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
 
 /// Turns the binary tree into bvh_width-wide nodes (wide BVHs for single rays:
 /// Wald, Benthin, Boulos, "Getting Rid of Packets", IEEE Symposium on
@@ -88,5 +95,7 @@ private:
 } // namespace RT_BVH_ABI
 } // namespace detail
 } // namespace rt
+
+#endif // RT_BVH_WIDE_COLLAPSE_W8 / _W4
 
 #include "simd_end.hpp"

@@ -1,0 +1,73 @@
+// bvh/dispatch.hpp - the 8-wide AVX2 path compiled a second time, in a unit
+// whose target lacks AVX2, for rt::accelerator to walk where the CPU has it
+// (run-time dispatch).
+//
+// A program built as most are (-O2, no -march) targets x86-64's SSE2 and gets
+// 4-wide nodes (layout.hpp), which cost 10-50% of the 8-wide path's speed on
+// an AVX2 machine (docs/performance.md, experiment 6). Where RT_BVH_DISPATCH
+// is 1 (bvh/abi_begin.hpp: x86-64, g++, clang++ or MSVC, rt::real = float, the
+// target without AVX2, RT_BVH_AVX2 not set), this file compiles the
+// width-dependent headers (layout, node_test, descend, leaf_test,
+// wide_collapse and bvh/bvh.hpp) once more:
+//
+//  - in a section whose macros say AVX2 (RT_BVH_AVX2_SECTION: abi_begin.hpp
+//    then gives RT_BVH_AVX2 = 1 and RT_BVH_ABI = bvh_w8), so each header's
+//    guard lets its 8-wide version through (one guard per width);
+//  - under target("avx2"): `#pragma GCC target` (g++) or `#pragma clang
+//    attribute` (clang++), which give every function the section defines,
+//    lambdas and templates included, the right to use AVX2, and through it
+//    AVX and SSE4 (clang++ does not define __AVX2__ there, g++ does: nothing
+//    here reads it). MSVC compiles AVX2 intrinsics in any function and needs
+//    none (not checked in CI);
+//  - in the namespaces rt::bvh_w8 and rt::detail::bvh_w8, not inline, so that
+//    rt::bvh, rt::bvh_node... stay the unit's 4-wide ones (layout.hpp links
+//    the section's names to its own width).
+//
+// Why it is safe:
+//  - No FMA in the target: no compiler can fuse a b - c d there, so the
+//    8-wide walk computes the bits of the 4-wide one and of the scalar one
+//    (tests/library_dispatch.cpp compares them) without -ffp-contract=off.
+//  - Only rt::accelerator calls into the section, and only after
+//    detail::cpu_runs_avx2() (builtins.hpp) said yes: an 8-wide tree is
+//    built, walked and destroyed only on an AVX2 CPU (it is held apart, in a
+//    std::optional, never default-constructed on the SSE path).
+//  - What the section calls outside it (the watertight test's check in
+//    double, std::, the build's binning) is compiled for the unit's target,
+//    which an AVX2 CPU runs too; the compiler may inline it into the
+//    section, never the reverse (a target mismatch it refuses).
+//  - One unit compiled with -mavx2 and one dispatching both define
+//    rt::bvh_w8's functions, from the same text with the same macros; the
+//    linker may keep either, and either runs where the 8-wide path runs.
+//    rt::accelerator itself differs (it holds either width), so a
+//    dispatching unit names it rt::bvh_dispatch::accelerator
+//    (RT_BVH_ACCELERATOR_ABI, abi_begin.hpp; tests/library_mixed_targets.cpp).
+// (#pragma once: the default section is bvh.hpp's, the second one this file's.)
+#pragma once
+
+#include "bvh.hpp"      // the unit's own width first: rt::bvh
+#include "builtins.hpp" // detail::cpu_runs_avx2
+
+#include "abi_begin.hpp" // RT_BVH_DISPATCH
+#if RT_BVH_DISPATCH
+#include "simd_end.hpp"
+#include <immintrin.h> // before the section, so that no declaration of it takes the section's target
+
+#define RT_BVH_AVX2_SECTION
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#elif defined(__GNUC__)
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#endif
+
+#include "bvh.hpp" // now the 8-wide path, in rt::bvh_w8
+
+#if defined(__clang__)
+#pragma clang attribute pop
+#elif defined(__GNUC__)
+#pragma GCC pop_options
+#endif
+#undef RT_BVH_AVX2_SECTION
+#else
+#include "simd_end.hpp"
+#endif

@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""The 8-wide path's AVX2 code stays in its namespaces (include/rt/bvh/dispatch.hpp).
+
+A program compiled without AVX2 in its target holds the BVH twice: the
+unit's own 4-wide path and the 8-wide one compiled under target("avx2"),
+which rt::accelerator enters only after the CPU test. Every instruction on
+256-bit registers must therefore sit in a function of rt::bvh_w8 or
+rt::detail::bvh_w8 (or a lambda or template of theirs): one elsewhere (a
+shared template instantiated inside the AVX2 section, say) could run on a
+CPU without AVX2. Reads the disassembly of PROGRAM (objdump -d -C) and
+prints each function outside them that uses a ymm register; exits 1 if
+there is one, or if no function of bvh_w8 uses one (nothing was checked).
+Usage: check_avx_confined.py OBJDUMP PROGRAM
+"""
+import re
+import subprocess
+import sys
+
+
+def main() -> int:
+    objdump, program = sys.argv[1], sys.argv[2]
+    text = subprocess.run([objdump, "-d", "-C", "--no-show-raw-insn", program], check=True,
+                          capture_output=True, text=True).stdout
+    function, inside, outside = None, set(), set()
+    for line in text.splitlines():
+        m = re.match(r"^[0-9a-f]+ <(.*)>:$", line)
+        if m:
+            function = m.group(1)
+            continue
+        if function is not None and "%ymm" in line:
+            (inside if "bvh_w8::" in function else outside).add(function)
+    for f in sorted(outside):
+        print(f"{program}: expected ymm registers only in rt::bvh_w8, found them in {f}")
+    print(f"{len(inside)} functions of rt::bvh_w8 use ymm registers, {len(outside)} others")
+    if not inside:
+        print(f"{program}: expected the 8-wide path's functions to use ymm registers, found none")
+    return 0 if inside and not outside else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
