@@ -11,9 +11,16 @@
 // The rays by kind (camera, shadow, reflection) are counted in a separate
 // single-thread pass through a counting wrapper, so the timed renders carry
 // no instrumentation.
+//
+// With Embree (Debian libembree-dev), a second table is what a user feels:
+// for each mesh, the build plus a 1-spp and a 16-spp frame at 1280x720 on
+// every hardware thread, by rt (rt::accelerator, its default build) and by
+// Embree (rtcIntersect1 / rtcOccluded1, its default build) under the same
+// shading: rt::ray_color, given Embree's hits as rt's hit records.
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <rt/accelerator.hpp>
@@ -24,6 +31,12 @@
 #include <rt/scene_loader.hpp>
 
 #include "bench.hpp"
+#if defined(RT_BENCH_HAS_EMBREE)
+#include <rt/mesh.hpp>
+#include <rt/triangle_shape.hpp>
+
+#include "embree_scene.hpp"
+#endif
 
 namespace {
 
@@ -46,6 +59,53 @@ struct counting_accelerator {
         return inner->any_hit(r, tmin, tmax);
     }
 };
+
+#if defined(RT_BENCH_HAS_EMBREE)
+/// Embree's hits as rt's hit records, so rt::ray_color shades them as it
+/// shades rt's own: the point and its error bound from Embree's t and
+/// barycentrics (rt::fill_triangle_record), Embree's geometric normal, and the
+/// mesh's shading normal and material (rt::complete_mesh_hit).
+struct embree_accelerator {
+    const bench::embree_scene* scene;
+    const rt::mesh* geometry;
+
+    bool closest_hit(const rt::ray& r, real tmin, real tmax, rt::hit_record& rec) const
+    {
+        float t = 0, u = 0, v = 0;
+        unsigned triangle = 0;
+        vec3 normal;
+        if (!scene->closest_with_normal(r, float(tmax), t, triangle, normal, u, v, float(tmin)))
+            return false;
+        const rt::index3& corner = geometry->triangles[triangle];
+        rt::triangle_hit h;
+        h.t = real(t);
+        h.b1 = real(u);
+        h.b2 = real(v);
+        h.b0 = 1 - h.b1 - h.b2;
+        rt::fill_triangle_record(geometry->positions[corner[0]], geometry->positions[corner[1]],
+                                 geometry->positions[corner[2]], normal, r, h, rec);
+        rt::complete_mesh_hit(*geometry, triangle, rec);
+        rec.shape = 0;
+        return true;
+    }
+    bool any_hit(const rt::ray& r, real tmin, real tmax) const
+    {
+        return scene->occluded(r, float(tmin), float(tmax));
+    }
+};
+
+/// The mean over channels of |a - b|.
+double mean_difference(const rt::image& a, const rt::image& b)
+{
+    double sum = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const rt::color d = glm::abs(a.at(x, y) - b.at(x, y));
+            sum += double(d.r) + double(d.g) + double(d.b);
+        }
+    return sum / (3.0 * double(a.width) * double(a.height));
+}
+#endif
 
 rt::scene mesh_scene(rt::mesh geometry, bool inside, int width, int height)
 {
@@ -89,6 +149,78 @@ rt::scene mesh_scene(rt::mesh geometry, bool inside, int width, int height)
     return s;
 }
 
+struct entry {
+    std::string name;
+    std::unique_ptr<rt::scene> s;
+    rt::mesh geometry;  ///< a copy of a mesh scene's one shape, for Embree
+};
+
+#if defined(RT_BENCH_HAS_EMBREE)
+/// What a user feels: build + frame at 1280x720, 1 and 16 spp, every
+/// hardware thread, rt against Embree under the same shading. The engines
+/// alternate (rt, Embree, rt, ...) so both see the same machine.
+void frame_against_embree(const bench::options& o, const std::vector<entry>& scenes)
+{
+    const int width = o.quick ? 64 : 1280, height = o.quick ? 36 : 720;
+    const int repeats = o.quick ? 1 : 3;
+    bench::csv table("whole frame, build included: rt against Embree " RTC_VERSION_STRING " (bench/frame.cpp)",
+                     {"scene", "width", "height", "spp", "threads", "rt_build_seconds", "rt_frame_seconds",
+                      "embree_build_seconds", "embree_frame_seconds", "ratio_rt_over_embree",
+                      "mean_difference"});
+    table.note("render", std::to_string(width) + "x" + std::to_string(height) +
+                             ", jittered sampler, box filter, every hardware thread; each engine's default "
+                             "build (rt: spatial splits; Embree: medium quality); best of " +
+                             std::to_string(repeats));
+    for (const entry& e : scenes) {
+        if (e.geometry.triangles.empty())
+            continue;  // the showcase: spheres and several shapes, not one mesh
+        rt::scene s = *e.s;
+        s.width = width;
+        s.height = height;
+        const rt::ray_generator gen = rt::make_ray_generator(s.cam, width, height);
+        auto ray_at = [&](real x, real y) { return rt::generate_ray(gen, x, y); };
+        for (int spp : {1, 16}) {
+            rt::render_options ro;
+            ro.width = width;
+            ro.height = height;
+            ro.samples_per_pixel = o.quick ? std::min(spp, 2) : spp;
+            double rt_build = 1e300, rt_frame = 1e300, embree_build = 1e300, embree_frame = 1e300;
+            rt::image rt_image, embree_image;
+            for (int k = 0; k < repeats; ++k) {
+                {
+                    const auto start = bench::clock::now();
+                    const rt::accelerator accel(s, rt::accelerator_kind::automatic);
+                    rt_build = std::min(rt_build, bench::seconds_since(start));
+                    const auto frame_start = bench::clock::now();
+                    rt_image = rt::render(ro, ray_at, [&](const rt::ray& r, rt::sample_context&) {
+                                   return rt::ray_color(s, accel, r);
+                               }).pixels;
+                    rt_frame = std::min(rt_frame, bench::seconds_since(frame_start));
+                }
+                {
+                    const bench::embree_scene embree(e.geometry, nullptr);
+                    embree_build = std::min(embree_build, embree.build_seconds());
+                    const embree_accelerator accel{&embree, &e.geometry};
+                    const auto frame_start = bench::clock::now();
+                    embree_image = rt::render(ro, ray_at, [&](const rt::ray& r, rt::sample_context&) {
+                                       return rt::ray_color(s, accel, r);
+                                   }).pixels;
+                    embree_frame = std::min(embree_frame, bench::seconds_since(frame_start));
+                }
+            }
+            const double ratio = (rt_build + rt_frame) / (embree_build + embree_frame);
+            const double difference = mean_difference(rt_image, embree_image);
+            table.row() << e.name << width << height << ro.samples_per_pixel << bench::hardware_threads()
+                        << rt_build << rt_frame << embree_build << embree_frame << ratio << difference;
+            std::cout << e.name << ", " << ro.samples_per_pixel << " spp at " << width << "x" << height
+                      << ": rt " << rt_build << " + " << rt_frame << " s, Embree " << embree_build << " + "
+                      << embree_frame << " s, rt/Embree " << ratio << ", mean difference " << difference << '\n';
+        }
+    }
+    table.write(o, "frame_embree.csv");
+}
+#endif
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -99,15 +231,11 @@ int main(int argc, char** argv)
         const int repeats = o.quick ? 1 : 3;
         const unsigned all = bench::hardware_threads();
 
-        struct entry {
-            std::string name;
-            std::unique_ptr<rt::scene> s;
-        };
         std::vector<entry> scenes;
         {
             auto showcase = std::make_unique<rt::scene>(
                 rt::load_scene(std::filesystem::path(RT_BENCH_SOURCE_DIR) / "scenes/showcase.scene"));
-            scenes.push_back({"showcase.scene", std::move(showcase)});
+            scenes.push_back({"showcase.scene", std::move(showcase), {}});
         }
         std::vector<std::string> files = {"stanford-bunny.obj", "bunny-loop2.obj", "conference.obj",
                                           "sibenik.obj",        "sponza-dabrovic.obj", "CornellBox-Original.obj"};
@@ -120,8 +248,9 @@ int main(int argc, char** argv)
                 continue;
             }
             const bool inside = file == "conference.obj" || file == "sibenik.obj" || file == "sponza-dabrovic.obj";
-            scenes.push_back({file, std::make_unique<rt::scene>(
-                                        mesh_scene(rt::load_obj(path).geometry, inside, width, height))});
+            auto scene = std::make_unique<rt::scene>(mesh_scene(rt::load_obj(path).geometry, inside, width, height));
+            rt::mesh geometry = std::get<rt::mesh>(scene->shapes.front());  // in the scene's grey material
+            scenes.push_back({file, std::move(scene), std::move(geometry)});
         }
 
         bench::csv table("whole frame: shading, shadows, one mirror bounce (bench/frame.cpp)",
@@ -170,6 +299,9 @@ int main(int argc, char** argv)
             }
         }
         table.write(o, "frame.csv");
+#if defined(RT_BENCH_HAS_EMBREE)
+        frame_against_embree(o, scenes);
+#endif
         return 0;
     });
 }

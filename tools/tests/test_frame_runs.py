@@ -72,5 +72,44 @@ class Table(unittest.TestCase):
         self.assertIn("2 threads or more", str(caught.exception))
 
 
+EMBREE_HEADER = ("scene,width,height,spp,threads,rt_build_seconds,rt_frame_seconds,embree_build_seconds,"
+                 "embree_frame_seconds,ratio_rt_over_embree,mean_difference\n")
+
+
+def write_embree_run(folder: Path, rt_frame: float, embree_frame: float, spps=(1, 16)):
+    folder.mkdir(parents=True, exist_ok=True)
+    lines = ["# machine: a test machine\n", "# render: 128x72\n", EMBREE_HEADER]
+    for spp in spps:
+        ratio = (0.5 + rt_frame * spp) / (0.25 + embree_frame * spp)
+        lines.append(f"cube.obj,128,72,{spp},2,0.5,{rt_frame * spp},0.25,{embree_frame * spp},{ratio},3e-09\n")
+    (folder / "frame_embree.csv").write_text("".join(lines))
+
+
+class EmbreeTable(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="frame-runs-test-"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def test_build_and_frame_of_each_engine_then_the_second_run_in_brackets(self):
+        write_embree_run(self.tmp / "one", 0.1, 0.2)
+        write_embree_run(self.tmp / "two", 0.1, 0.1)
+        text = frame_runs.table_embree(frame_runs.load_embree(self.tmp / "one"),
+                                       frame_runs.load_embree(self.tmp / "two"))
+        self.assertIn("| scene | spp | rt: build + frame (s) | Embree: build + frame (s) | rt / Embree |", text)
+        # 16 spp: rt 0.5 + 1.6 s, Embree 0.25 + 3.2 s (first run) or 0.25 + 1.6 s (second): 0.61 and 1.14
+        self.assertIn("| cube (128x72) | 16 | 0.500 + 1.600 (0.500 + 1.600) | 0.250 + 3.200 (0.250 + 1.600) "
+                      "| 0.61 (1.14) | 3.0e-09 |", text)
+
+    def test_a_sample_count_missing_from_one_run_is_named(self):
+        write_embree_run(self.tmp / "one", 0.1, 0.2)
+        write_embree_run(self.tmp / "two", 0.1, 0.1, spps=(1,))
+        with self.assertRaises(SystemExit) as caught:
+            frame_runs.table_embree(frame_runs.load_embree(self.tmp / "one"),
+                                    frame_runs.load_embree(self.tmp / "two"))
+        self.assertIn("cube (16 spp) in the first only", str(caught.exception))
+
+
 if __name__ == "__main__":
     unittest.main()
