@@ -166,10 +166,11 @@ void frame_against_embree(const bench::options& o, const std::vector<entry>& sce
     bench::csv table("whole frame, build included: rt against Embree " RTC_VERSION_STRING " (bench/frame.cpp)",
                      {"scene", "width", "height", "spp", "threads", "rt_build_seconds", "rt_frame_seconds",
                       "embree_build_seconds", "embree_frame_seconds", "ratio_rt_over_embree",
-                      "mean_difference"});
+                      "mean_difference", "rt_plain_build_seconds", "rt_plain_frame_seconds"});
     table.note("render", std::to_string(width) + "x" + std::to_string(height) +
                              ", jittered sampler, box filter, every hardware thread; each engine's default "
-                             "build (rt: spatial splits; Embree: medium quality); best of " +
+                             "build (rt: spatial splits; Embree: medium quality), and rt without spatial "
+                             "splits (plain); best of " +
                              std::to_string(repeats));
     for (const entry& e : scenes) {
         if (e.geometry.triangles.empty())
@@ -185,18 +186,23 @@ void frame_against_embree(const bench::options& o, const std::vector<entry>& sce
             ro.height = height;
             ro.samples_per_pixel = o.quick ? std::min(spp, 2) : spp;
             double rt_build = 1e300, rt_frame = 1e300, embree_build = 1e300, embree_frame = 1e300;
+            double plain_build = 1e300, plain_frame = 1e300;
             rt::image rt_image, embree_image;
+            const auto rt_run = [&](const rt::bvh_options& options, double& build, double& frame) {
+                const auto start = bench::clock::now();
+                const rt::accelerator accel(s, rt::accelerator_kind::automatic, options);
+                build = std::min(build, bench::seconds_since(start));
+                const auto frame_start = bench::clock::now();
+                rt_image = rt::render(ro, ray_at, [&](const rt::ray& r, rt::sample_context&) {
+                               return rt::ray_color(s, accel, r);
+                           }).pixels;
+                frame = std::min(frame, bench::seconds_since(frame_start));
+            };
+            rt::bvh_options plain;
+            plain.spatial_budget = 0;
             for (int k = 0; k < repeats; ++k) {
-                {
-                    const auto start = bench::clock::now();
-                    const rt::accelerator accel(s, rt::accelerator_kind::automatic);
-                    rt_build = std::min(rt_build, bench::seconds_since(start));
-                    const auto frame_start = bench::clock::now();
-                    rt_image = rt::render(ro, ray_at, [&](const rt::ray& r, rt::sample_context&) {
-                                   return rt::ray_color(s, accel, r);
-                               }).pixels;
-                    rt_frame = std::min(rt_frame, bench::seconds_since(frame_start));
-                }
+                rt_run(plain, plain_build, plain_frame);
+                rt_run(rt::bvh_options{}, rt_build, rt_frame);
                 {
                     const bench::embree_scene embree(e.geometry, nullptr);
                     embree_build = std::min(embree_build, embree.build_seconds());
@@ -211,10 +217,12 @@ void frame_against_embree(const bench::options& o, const std::vector<entry>& sce
             const double ratio = (rt_build + rt_frame) / (embree_build + embree_frame);
             const double difference = mean_difference(rt_image, embree_image);
             table.row() << e.name << width << height << ro.samples_per_pixel << bench::hardware_threads()
-                        << rt_build << rt_frame << embree_build << embree_frame << ratio << difference;
+                        << rt_build << rt_frame << embree_build << embree_frame << ratio << difference
+                        << plain_build << plain_frame;
             std::cout << e.name << ", " << ro.samples_per_pixel << " spp at " << width << "x" << height
                       << ": rt " << rt_build << " + " << rt_frame << " s, Embree " << embree_build << " + "
-                      << embree_frame << " s, rt/Embree " << ratio << ", mean difference " << difference << '\n';
+                      << embree_frame << " s, rt/Embree " << ratio << ", mean difference " << difference
+                      << "; rt without spatial splits " << plain_build << " + " << plain_frame << " s\n";
         }
     }
     table.write(o, "frame_embree.csv");

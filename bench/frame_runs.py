@@ -85,15 +85,18 @@ def table_embree(first, second):
     both = lambda f: "%s (%s)" % (f(rows1), f(rows2))
     out = [f"Machine: {notes.get('machine', 'not recorded')}.",
            f"Render: {notes.get('render', 'not recorded')}.", "",
-           "| scene | spp | rt: build + frame (s) | Embree: build + frame (s) | rt / Embree | image difference |",
-           "|---|---:|---:|---:|---:|---:|"]
+           "| scene | spp | rt: build + frame (s) | Embree: build + frame (s) | rt / Embree | image difference "
+           "| rt without spatial splits (s) | splits / none |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for key in rows1:
         r = rows1[key]
         total = lambda e: lambda rows: "%.3f + %.3f" % (float(rows[key][e + "_build_seconds"]),
                                                        float(rows[key][e + "_frame_seconds"]))
+        seconds = lambda rows, e: float(rows[key][e + "_build_seconds"]) + float(rows[key][e + "_frame_seconds"])
         cells = [both(total("rt")), both(total("embree")),
                  both(lambda rows: "%.2f" % float(rows[key]["ratio_rt_over_embree"])),
-                 "%.1e" % float(r["mean_difference"])]
+                 "%.1e" % float(r["mean_difference"]), both(total("rt_plain")),
+                 both(lambda rows: "%.2f" % (seconds(rows, "rt") / seconds(rows, "rt_plain")))]
         label = "%s (%sx%s)" % (key[0], r["width"], r["height"])
         out.append("| %s | %d | %s |" % (label, key[1], " | ".join(cells)))
     return "\n".join(out) + "\n"

@@ -73,7 +73,7 @@ class Table(unittest.TestCase):
 
 
 EMBREE_HEADER = ("scene,width,height,spp,threads,rt_build_seconds,rt_frame_seconds,embree_build_seconds,"
-                 "embree_frame_seconds,ratio_rt_over_embree,mean_difference\n")
+                 "embree_frame_seconds,ratio_rt_over_embree,mean_difference,rt_plain_build_seconds,rt_plain_frame_seconds\n")
 
 
 def write_embree_run(folder: Path, rt_frame: float, embree_frame: float, spps=(1, 16)):
@@ -81,7 +81,7 @@ def write_embree_run(folder: Path, rt_frame: float, embree_frame: float, spps=(1
     lines = ["# machine: a test machine\n", "# render: 128x72\n", EMBREE_HEADER]
     for spp in spps:
         ratio = (0.5 + rt_frame * spp) / (0.25 + embree_frame * spp)
-        lines.append(f"cube.obj,128,72,{spp},2,0.5,{rt_frame * spp},0.25,{embree_frame * spp},{ratio},3e-09\n")
+        lines.append(f"cube.obj,128,72,{spp},2,0.5,{rt_frame * spp},0.25,{embree_frame * spp},{ratio},3e-09,0.4,{rt_frame * spp * 1.2}\n")
     (folder / "frame_embree.csv").write_text("".join(lines))
 
 
@@ -98,9 +98,10 @@ class EmbreeTable(unittest.TestCase):
         text = frame_runs.table_embree(frame_runs.load_embree(self.tmp / "one"),
                                        frame_runs.load_embree(self.tmp / "two"))
         self.assertIn("| scene | spp | rt: build + frame (s) | Embree: build + frame (s) | rt / Embree |", text)
-        # 16 spp: rt 0.5 + 1.6 s, Embree 0.25 + 3.2 s (first run) or 0.25 + 1.6 s (second): 0.61 and 1.14
+        # 16 spp: rt 0.5 + 1.6 s, Embree 0.25 + 3.2 s (first run) or 0.25 + 1.6 s (second): 0.61 and 1.14;
+        # rt without splits 0.4 + 1.92 s: the splits take 2.1 / 2.32 = 0.91 of its time
         self.assertIn("| cube (128x72) | 16 | 0.500 + 1.600 (0.500 + 1.600) | 0.250 + 3.200 (0.250 + 1.600) "
-                      "| 0.61 (1.14) | 3.0e-09 |", text)
+                      "| 0.61 (1.14) | 3.0e-09 | 0.400 + 1.920 (0.400 + 1.920) | 0.91 (0.91) |", text)
 
     def test_a_sample_count_missing_from_one_run_is_named(self):
         write_embree_run(self.tmp / "one", 0.1, 0.2)
