@@ -15,6 +15,13 @@ first run followed by the second's in brackets. Without --doc they are printed.
 Another machine's runs go in a block of their own, named by --block (--block
 embree-runs-amd: between <!-- embree-runs-amd:begin --> and its end line).
 Python 3 standard library only.
+
+    python3 bench/embree_runs.py --dispatch NATIVE1 NATIVE2 DISPATCHED1 DISPATCHED2 --doc docs/performance.md
+
+compares instead a build with -march=native against one without it (-DRT_BENCH_NATIVE=OFF:
+the BVH path picked at run time), between <!-- dispatch-runs:begin --> and its end line:
+for every set, the dispatched build's rt/Embree ratio over the native build's, each
+engine's speed taken in the same run so that the machine's load cancels.
 """
 
 import os
@@ -98,7 +105,40 @@ def tables(first, second):
     return "\n".join(out) + "\n"
 
 
+def dispatch_table(native1, native2, dispatched1, dispatched2):
+    runs = [native1, native2, dispatched1, dispatched2]
+    meshes = list(native1[2])
+    missing = [f"{m} {s}" for m in meshes for s in SETS for run in runs if (m, s, 1) not in run[1]]
+    if missing:
+        raise SystemExit("embree_runs.py: expected all four runs to hold every mesh and set, found none for " +
+                         ", ".join(missing[:5]) + "; rerun bench_embree in full")
+    ratio = lambda run, m, s: float(run[1][(m, s, 1)]["ratio_rt_over_embree"])
+    relative = lambda native, dispatched, m, s: ratio(dispatched, m, s) / ratio(native, m, s)
+    out = [f"Native: {native1[0].get('machine', 'not recorded')}.",
+           f"Dispatched: {dispatched1[0].get('machine', 'not recorded')}.", "",
+           "The dispatched build's rt/Embree rays per second over the native build's, one thread, first "
+           "pair of runs (second pair):", "",
+           "| mesh | " + " | ".join(SETS) + " |", "|---|" + "---:|" * len(SETS)]
+    for m in meshes:
+        out.append("| %s | %s |" % (m, " | ".join(
+            "%.2f (%.2f)" % (relative(native1, dispatched1, m, s), relative(native2, dispatched2, m, s))
+            for s in SETS)))
+    pairs = [(m, s) for m in meshes for s in SETS]
+    within = sum(all(relative(n, d, m, s) >= 0.95 for n, d in ((native1, dispatched1), (native2, dispatched2)))
+                 for m, s in pairs)
+    out += ["", "Sets within 5%% of the native build (0.95 or more) in both pairs: %d of %d." % (within, len(pairs))]
+    return "\n".join(out) + "\n"
+
+
 def main(argv=None):
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if "--dispatch" in argv:
+        argv.remove("--dispatch")
+        return runs_main(argv, __doc__.split("\n")[0],
+                         lambda *folders: dispatch_table(*(load(f) for f in folders)),
+                         "<!-- dispatch-runs:begin -->", "<!-- dispatch-runs:end -->",
+                         "embree_runs.py: wrote the dispatch table of",
+                         runs=("native1", "native2", "dispatched1", "dispatched2"))
     return runs_main(argv, __doc__.split("\n")[0], lambda first, second: tables(load(first), load(second)),
                          BEGIN, END, "embree_runs.py: wrote the tables of")
 

@@ -125,5 +125,41 @@ class Tables(unittest.TestCase):
                       str(caught.exception))
 
 
+class Dispatch(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="embree-runs-test-"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def test_each_set_is_the_dispatched_ratio_over_the_native_one_and_the_sets_within_5_percent_counted(self):
+        # native rt/Embree 0.5 and 0.6; dispatched 0.49 (0.98 of native) and 0.54 (0.90 of native)
+        for name, ratio in (("n1", 0.5), ("n2", 0.6), ("d1", 0.49), ("d2", 0.54)):
+            write_run(self.tmp / name, ratio, 3.0)
+        text = embree_runs.dispatch_table(*(embree_runs.load(self.tmp / n) for n in ("n1", "n2", "d1", "d2")))
+        self.assertIn("| cube | 0.98 (0.90) | 0.98 (0.90) |", text)
+        self.assertIn("in both pairs: 0 of 5.", text)
+
+    def test_a_set_at_0_95_counts_as_within(self):
+        for name, ratio in (("n1", 1.0), ("n2", 1.0), ("d1", 0.95), ("d2", 1.2)):
+            write_run(self.tmp / name, ratio, 3.0)
+        text = embree_runs.dispatch_table(*(embree_runs.load(self.tmp / n) for n in ("n1", "n2", "d1", "d2")))
+        self.assertIn("in both pairs: 5 of 5.", text)
+
+    def test_the_command_line_takes_four_folders_and_the_dispatch_block(self):
+        for name, ratio in (("n1", 1.0), ("n2", 1.0), ("d1", 1.0), ("d2", 1.0)):
+            write_run(self.tmp / name, ratio, 3.0)
+        doc = self.tmp / "doc.md"
+        doc.write_text("before\n<!-- dispatch-runs:begin -->\nold\n<!-- dispatch-runs:end -->\nafter\n")
+        with contextlib.redirect_stdout(io.StringIO()):
+            code = embree_runs.main(["--dispatch"] + [str(self.tmp / n) for n in ("n1", "n2", "d1", "d2")] +
+                                    ["--doc", str(doc)])
+        self.assertEqual(code, 0)
+        text = doc.read_text()
+        self.assertNotIn("old", text)
+        self.assertTrue(text.startswith("before\n<!-- dispatch-runs:begin -->\nNative: a test machine."))
+        self.assertIn("| cube | 1.00 (1.00) |", text)
+
+
 if __name__ == "__main__":
     unittest.main()
