@@ -2,7 +2,7 @@
 # tools/tests/test_skips.py registers a small project the same way and checks it).
 # ctest counts a test skipped when it exits 77 (SKIP_RETURN_CODE), failed on any other
 # non-zero code, whatever it printed.
-set(RT_SCRIPT_CASE "${CMAKE_CURRENT_LIST_DIR}/../tests/script_case.sh")
+get_filename_component(RT_SCRIPT_CASE "${CMAKE_CURRENT_LIST_DIR}/../tests/script_case.sh" ABSOLUTE)
 
 # rt_discover_cases(TARGET PREFIX LABEL [ARG...]): each TEST_CASE of a doctest suite is
 # one ctest test; a case that skips (RT_SKIP, tests/doctest_main.cpp) exits 77. The ARGs
