@@ -1,6 +1,6 @@
 // The doctest runner shared by every suite (compiled once), with honest skips.
 //
-// A case skips with RT_SKIP(reason) (rt_doctest.hpp): it prints "SKIPPED:
+// A case skips with RT_SKIP(reason) (rt_skip.hpp): it prints "SKIPPED:
 // reason" and returns at once. Each case ends passed, failed or skipped, and a
 // failure wins: a case that skipped after a failed check is failed. The exit
 // code is 1 when a case failed, 77 when every case that ran skipped (ctest's
@@ -11,7 +11,9 @@
 // exercise reached through the library, skips instead of failing. A stage's
 // suite keeps them failures: they are its grade.
 #define DOCTEST_CONFIG_IMPLEMENT
-#include "rt_doctest.hpp"
+#include <doctest/doctest.h>
+
+#include "rt_skip.hpp"
 
 #include <cstring>
 #include <iostream>
