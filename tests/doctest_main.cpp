@@ -4,7 +4,7 @@
 // reason" and returns at once. Each case ends passed, failed or skipped, and a
 // failure wins: a case that skipped after a failed check is failed. The exit
 // code is 1 when a case failed, 77 when every case that ran skipped (ctest's
-// SKIP_RETURN_CODE, tests/CMakeLists.txt), else 0. ctest runs one case per test.
+// SKIP_RETURN_CODE, cmake/RtTestCases.cmake), else 0. ctest runs one case per test.
 //
 // --not-done-skips (the library suites, which call no exercise of their own):
 // a case whose only failures are rt::exercise_not_done, a kit's unwritten
