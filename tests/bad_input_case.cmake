@@ -7,6 +7,7 @@
 #         -DWORK=<scratch folder> -DCASE=<case> [-DEMULATOR=<wine>] -P bad_input_case.cmake
 # EMULATOR runs a cross-built program (CMAKE_CROSSCOMPILING_EMULATOR: Wine, qemu).
 cmake_minimum_required(VERSION 3.21)
+include("${CMAKE_CURRENT_LIST_DIR}/skip.cmake") # rt_skip
 
 foreach(variable IN ITEMS PROGRAM CATALOGUE WORK CASE)
   if(NOT DEFINED ${variable})
@@ -68,7 +69,7 @@ if("${arguments}" MATCHES "READONLY/")
     execute_process(COMMAND "${CMAKE_COMMAND}" -E touch "/proc/rt-probe" RESULT_VARIABLE touched
                     OUTPUT_QUIET ERROR_QUIET)
     if(NOT IS_DIRECTORY "/proc" OR touched EQUAL 0)
-      message("SKIPPED: no folder here is unwritable for this user")
+      rt_skip("no folder here is unwritable for this user")
       return()
     endif()
     set(readonly "/proc/")
@@ -110,7 +111,7 @@ endif()
 # In a student kit, an input the camera rules refuse reaches the stage-01
 # exercise first: exit 3 names it, and the case cannot be judged yet.
 if("${exit_code}" STREQUAL "3" AND err MATCHES "not done yet: stage")
-  message("SKIPPED: ${err}")
+  rt_skip("${err}")
   return()
 endif()
 get_filename_component(program_name "${PROGRAM}" NAME_WE)

@@ -237,8 +237,7 @@ TEST_CASE("every path returns the flat list's hits on the Stanford bunny")
 {
     const std::filesystem::path bunny = std::filesystem::path(RT_SHARED_DIR) / "meshes" / "stanford-bunny.obj";
     if (!std::filesystem::exists(bunny)) {
-        MESSAGE("skipped: " << bunny.string() << " is not there");
-        return;
+        RT_SKIP(bunny.string() + " is not there (../shared/meshes)");
     }
     const rt::scene s = rt_test::scene_of(rt::load_obj(bunny).geometry);
     rt::aabb box;
@@ -266,8 +265,7 @@ TEST_CASE("the paths agree with each other on many rays through the bunny")
     // paths against each other and against their own scalar walk
     const std::filesystem::path bunny = std::filesystem::path(RT_SHARED_DIR) / "meshes" / "stanford-bunny.obj";
     if (!std::filesystem::exists(bunny)) {
-        MESSAGE("skipped: " << bunny.string() << " is not there");
-        return;
+        RT_SKIP(bunny.string() + " is not there (../shared/meshes)");
     }
     const rt::scene s = rt_test::scene_of(rt::load_obj(bunny).geometry);
     rt::aabb box;

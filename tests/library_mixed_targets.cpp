@@ -19,11 +19,10 @@
 TEST_CASE("units compiled for different targets each get their own BVH types, and the same hits")
 {
 #if !defined(RT_TEST_MIXED_AVX2)
-    MESSAGE("SKIPPED: this compiler or machine does not build and run AVX2 code, so both units have one target");
+    RT_SKIP("this compiler or machine does not build and run AVX2 code, so both units have one target");
 #else
     if (!std::is_same<rt::real, float>::value) {
-        MESSAGE("SKIPPED: with rt::real = double both units take the scalar path (4-wide nodes), whatever the target");
-        return;
+        RT_SKIP("with rt::real = double both units take the scalar path (4-wide nodes), whatever the target");
     }
     std::mt19937 random(23);
     const rt::scene s = rt_test::random_scene(random, 300, 3000, true);

@@ -159,8 +159,7 @@ TEST_CASE("the Cornell box: negative indices, quads and its MTL file")
 {
     const std::filesystem::path cornell = std::filesystem::path(RT_SHARED_DIR) / "meshes" / "CornellBox-Original.obj";
     if (!std::filesystem::exists(cornell)) {
-        MESSAGE("skipped: " << cornell.string() << " is not there");
-        return;
+        RT_SKIP(cornell.string() + " is not there (../shared/meshes)");
     }
     const rt::obj_result loaded = rt::load_obj(cornell);
     const rt::mesh& m = loaded.geometry;

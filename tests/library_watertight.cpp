@@ -172,9 +172,10 @@ TEST_CASE("rays from inside closed meshes at vertices and edges: Moller-Trumbore
 {
     const std::vector<closed_mesh> meshes = closed_meshes();
     const std::string not_done = rt_test::not_done_message([&] { moller_trumbore_misses(meshes.back()); });
-    const bool asserted = rt_test::textbook_side_asserted(not_done, "hit_triangle_moller_trumbore (stage 04)");
+    const std::string why = rt_test::textbook_skip_reason(not_done, "hit_triangle_moller_trumbore (stage 04)");
     if (!not_done.empty())
-        return;
+        RT_SKIP(why);
+    const bool asserted = why.empty();
     const std::string whose = asserted ? "Moller-Trumbore" : "your Moller-Trumbore";
     std::size_t total_misses = 0;
     for (const closed_mesh& closed : meshes) {
@@ -186,7 +187,9 @@ TEST_CASE("rays from inside closed meshes at vertices and edges: Moller-Trumbore
                           << 100.0 * double(misses) / double(rays) << "%)");
         total_misses += misses;
     }
-    if (asserted && in_float)
+    if (!asserted)
+        RT_SKIP(why); // the figures above are the student's own method's
+    if (in_float)
         CHECK(total_misses > 0); // the textbook method leaks in float
 }
 

@@ -12,6 +12,8 @@
 
 #include <doctest/doctest.h>
 
+#include "rt_skip.hpp" // RT_SKIP
+
 #include <cstddef>
 #include <cstdint>
 #include <iomanip>

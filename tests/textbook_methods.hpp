@@ -10,13 +10,13 @@
 //    tests/CMakeLists.txt defines where tools/make_kit.py sits beside the tests
 //    (never in a kit, nor in the copy a submission is graded in).
 //  - In a kit, an exercise not written yet throws rt::exercise_not_done: the
-//    textbook side says SKIPPED and why, and the robust method is still tested.
+//    case of the textbook side skips, with why, and the robust method's cases
+//    still run.
 //  - Once the student has written it, its figures are printed beside the
 //    robust method's and nothing about them is asserted: a method more careful
 //    than the book's is never marked down.
 #pragma once
 
-#include <iostream>
 #include <stdexcept>
 #include <string>
 
@@ -61,25 +61,18 @@ std::string not_done_message(Call call)
     }
 }
 
-/// Whether a case asserts what the textbook method `exercise` does: only in the
-/// reference. Elsewhere it prints the line that makes ctest count the case as
-/// skipped, with the reason: `not_done`, the exercise's not-done message (a kit
-/// where it is not written yet), or, when that is "", that the method is the
-/// student's own.
-inline bool textbook_side_asserted(const std::string& not_done, const std::string& exercise)
+/// Why a case cannot assert what the textbook method `exercise` does, or "" where
+/// it can: only in the reference. Elsewhere the case skips with this reason
+/// (RT_SKIP): `not_done`, the exercise's not-done message (a kit where it is not
+/// written yet), or, when that is "", that the method is the student's own.
+inline std::string textbook_skip_reason(const std::string& not_done, const std::string& exercise)
 {
-    if (!not_done.empty()) {
-        std::cout << "SKIPPED: the comparison with the textbook needs " << exercise
-                  << ", which is not written yet: " << not_done << "\n";
-        return false;
-    }
-    if (!exercises_are_the_reference) {
-        std::cout << "SKIPPED: the textbook side is your own " << exercise
-                  << ": what it does is printed, never asserted (a method more careful than the book's is "
-                     "not marked down)\n";
-        return false;
-    }
-    return true;
+    if (!not_done.empty())
+        return "the comparison with the textbook needs " + exercise + ", which is not written yet: " + not_done;
+    if (!exercises_are_the_reference)
+        return "the textbook side is your own " + exercise +
+               ": what it does is printed, never asserted (a method more careful than the book's is not marked down)";
+    return "";
 }
 
 } // namespace rt_test

@@ -1,10 +1,11 @@
 # The pixel story quoted in docs/student-guide.md ("Asking a pixel") is what the
 # program prints today: run it, indent it as the page does, and find it there.
 #   cmake -DPROGRAM=... -DSCENE=... -DPAGE=... -DCOLUMN=200 -DROW=150 -P doc_story_case.cmake
+include("${CMAKE_CURRENT_LIST_DIR}/../skip.cmake")
 execute_process(COMMAND "${PROGRAM}" "${SCENE}" --pixel ${COLUMN} ${ROW}
                 RESULT_VARIABLE code OUTPUT_VARIABLE story ERROR_VARIABLE errors)
 if(code EQUAL 3)
-  message("SKIPPED: ${errors}")
+  rt_skip("${errors}")
   return()
 endif()
 if(NOT code EQUAL 0)

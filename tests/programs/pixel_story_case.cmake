@@ -3,10 +3,11 @@
 #   cmake -DPROGRAM=... -DSTAGE=03..09 -DSCENE=... -P pixel_story_case.cmake
 # A program whose stage (or an earlier one) is not done yet exits 3: the test is
 # then skipped, not failed (it is not a stage's test and is never graded).
+include("${CMAKE_CURRENT_LIST_DIR}/../skip.cmake")
 execute_process(COMMAND "${PROGRAM}" "${SCENE}" --pixel-json 1 1
                 RESULT_VARIABLE code OUTPUT_VARIABLE json ERROR_VARIABLE errors)
 if(code EQUAL 3)
-  message("SKIPPED: ${errors}")
+  rt_skip("${errors}")
   return()
 endif()
 if(NOT code EQUAL 0)

@@ -4,7 +4,7 @@ run_autograder on submissions to this repository's stage 03 (`--stages 3`, so th
 holds one stage: about 30 s in all). The zip itself is tested in test_grade.py.
 
 The Gradescope case needs root (setup.sh creates the test user and closes the sources to it)
-and setpriv; without them it prints SKIPPED: and the reason.
+and setpriv; without them its tests skip, with the reason (run_suite.py then exits 77).
 
 Run: python3 -m unittest -v test_autograder   (ctest runs it as tools.autograder)
 RT_GRADE_TEST_REFERENCE=DIR makes the autograder of another checkout of rt instead of this one.
@@ -56,7 +56,6 @@ class Gradescope(unittest.TestCase):
     def setUpClass(cls):
         reason = gradescope_skip_reason()
         if reason:
-            print(f"SKIPPED: {reason}")
             raise unittest.SkipTest(reason)
         cls.tmp = temporary_folder("ag")
         cls.root = cls.tmp / "autograder"
