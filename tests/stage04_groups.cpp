@@ -541,6 +541,8 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
                         std::string cause;
                         const bool later = std::make_pair(from_groups.shape, from_groups.primitive) >
                                            std::make_pair(from_list.shape, from_list.primitive);
+                        const bool list_wrong =
+                            a && b && (from_groups.t < from_list.t || (from_list.t == from_groups.t && later));
                         if (a && b && from_groups.t < from_list.t)
                             cause = "; your groups found a nearer hit than your list: closest_hit_list returned a "
                                     "hit that is not the closest (the last one found?): pass the closest t so far as "
@@ -566,7 +568,9 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
                                             "rt::slab_robust_far_factor";
                         }
                         CHECK_MESSAGE(same_hit(s, from_list, from_groups),
-                                      std::string(a && b ? "expected the list's closest hit (from_list), found "
+                                      std::string(list_wrong ? "your closest_hit_list (from_list) and your groups "
+                                                               "(from_groups) disagree, and the list is wrong"
+                                                  : a && b ? "expected the list's closest hit (from_list), found "
                                                            "another (from_groups): the nearest hit, and at an equal t "
                                                            "the later item (from_list is your closest_hit_list: if "
                                                            "stage04_triangle's cases fail too, fix it first)"
