@@ -147,7 +147,7 @@ MISTAKES: List[Mistake] = [
        "closed-form hits", ["the nearer root"]),
     _m(3, "`d` normalised, or `t` divided by",
        [(SPHERE, "const vec3& d = r.direction;", "const vec3 d = glm::normalize(r.direction);")],
-       "closed-form hits", ["|d|"]),
+       "closed-form hits", ["do not normalise d"]),
     _m(3, "`tmin < t` instead of `tmin <= t`",
        [(SPHERE, "    if (!(tmin <= t && t <= tmax)) {", "    if (!(tmin < t && t <= tmax)) {"),
         (SPHERE, "        if (!(tmin <= t && t <= tmax))", "        if (!(tmin < t && t <= tmax))")],
