@@ -65,6 +65,7 @@
 #include <rt/transfer.hpp>
 
 #include "../stages/02_generate_rays/edge.hpp"
+#include "../stages/common/textbook_groups.hpp"
 #include "edge_leaks.hpp"
 #include "reintersect.hpp"
 #include "shadow_acne.hpp"
@@ -81,6 +82,58 @@ std::string bytes_text(const rt::color& c, float gamma)
 {
     return "(" + std::to_string(rt::to_byte(c.r, gamma)) + ", " + std::to_string(rt::to_byte(c.g, gamma)) + ", " +
            std::to_string(rt::to_byte(c.b, gamma)) + ")";
+}
+
+/// What stage 04's program counts on the showcase: the pixels where the groups
+/// (build_groups, closest_hit_groups) with the textbook methods (stage 03's
+/// quadratic, Moller-Trumbore) differ from the library's accelerator, by the
+/// program's rule (stages/04_triangle/main.cpp): a miss on one side, another
+/// shape, or depths t |d| more than 1e-4 apart relative. The reference's figures:
+/// a student's quadratic may round the grazing pixel either way.
+struct showcase_compare {
+    std::size_t pixels = 0, leaks = 0, extra = 0, other = 0;
+    int column = -1, row = -1;      // the first differing pixel (--pixel's column and row)
+    double t_yours = 0, t_library = 0;
+};
+
+const showcase_compare& stage04_showcase_compare(const fs::path& root)
+{
+    if (!rt_test::exercises_are_the_reference) // a kit: skipped before its 460800 rays are traced
+        throw rt_test::not_the_reference("your groups and textbook methods (stages 03 and 04) are yours here; the "
+                                         "page quotes the reference's");
+    static const showcase_compare result = [&] {
+        const rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
+        const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
+        const stage::textbook_groups mine(s);
+        const rt::accelerator library(s);
+        showcase_compare c;
+        c.pixels = std::size_t(gen.nx) * std::size_t(gen.ny);
+        for (int j = gen.ny - 1; j >= 0; --j) // the top row first, as the program counts
+            for (int i = 0; i < gen.nx; ++i) {
+                const rt::ray r = rt::pixel_ray(gen, i, j);
+                rt::hit_record a, b;
+                const bool hit_a = mine.closest_hit(r, 0, rt::infinity, a);
+                const bool hit_b = library.closest_hit(r, 0, rt::infinity, b);
+                const float length = float(glm::length(r.direction));
+                const float depth_a = float(a.t) * length, depth_b = float(b.t) * length;
+                bool differs = false;
+                if (hit_b && !hit_a)
+                    differs = ++c.leaks > 0;
+                else if (hit_a && !hit_b)
+                    differs = ++c.extra > 0;
+                else if (hit_a && (a.shape != b.shape ||
+                                   std::fabs(depth_a - depth_b) > 1e-4f * std::max(depth_a, depth_b)))
+                    differs = ++c.other > 0;
+                if (differs && c.column < 0) {
+                    c.column = i;
+                    c.row = gen.ny - 1 - j;
+                    c.t_yours = double(a.t);
+                    c.t_library = double(b.t);
+                }
+            }
+        return c;
+    }();
+    return result;
 }
 
 /// The rays of the stage-02 program: the ray image of the showcase camera,
@@ -700,6 +753,22 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage04.showcase.group_nodes"] = [root] {
         return std::to_string(
             rt::build_groups(rt::group_items(rt::load_scene(root / "scenes" / "showcase.scene"))).nodes.size());
+    };
+    // the program's --compare on the showcase, with the reference's groups and textbook methods
+    all["stage04.showcase.compare.float"] = [root] {
+        const showcase_compare& c = stage04_showcase_compare(root);
+        return std::to_string(c.leaks + c.extra + c.other) + " of " + std::to_string(c.pixels) +
+               " pixels differ (" + std::to_string(c.leaks) + " leaked through your triangles: the library hits, "
+               "yours misses; " + std::to_string(c.extra) + " hit only with yours; " + std::to_string(c.other) +
+               " hit a different shape or depth)";
+    };
+    all["stage04.showcase.compare_pixel.float"] = [root] {
+        const showcase_compare& c = stage04_showcase_compare(root);
+        return "(" + std::to_string(c.column) + ", " + std::to_string(c.row) + ")";
+    };
+    all["stage04.showcase.compare_t.float"] = [root] {
+        const showcase_compare& c = stage04_showcase_compare(root);
+        return printed("t = %g against the library's stable %g", c.t_yours, c.t_library);
     };
     // the slab test's failures (library_slab.cpp): the textbook form is stage 04's hit_box_textbook
     all["stage04.slab.face_plane_rays"] = [] { return std::to_string(rt_test::face_plane_rays().size()); };

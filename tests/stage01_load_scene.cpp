@@ -5,6 +5,7 @@
 // what was expected, what was found.
 #include "rt_doctest.hpp"
 
+#include <cstdlib>
 #include <iterator>
 #include <optional>
 #include <sstream>
@@ -115,6 +116,10 @@ TEST_CASE("a mesh path is relative to the scene file and the mesh keeps only wha
     CHECK_MESSAGE(m.normals.empty(), "expected no normals (cube.obj has none), found " << m.normals.size());
     CHECK_MESSAGE(m.texcoords.empty(), "expected no texture coordinates (cube.obj has none), found " << m.texcoords.size());
     const rt::aabb box = rt::scene_bounds(s);
+    INFO("scene_bounds of a scene whose only shape is this mesh: "
+         << std::string(box.empty() ? "found an empty box, so the mesh was skipped: grow the box by every shape's "
+                                      "bounds, meshes included (rt::bounds of an rt::mesh)"
+                                    : "expected its bounds"));
     CHECK(box.lo == rt::vec3(0, -1, -1));
     CHECK(box.hi == rt::vec3(2, 1, 1));
 }
@@ -135,6 +140,26 @@ TEST_CASE("scene bounds enclose every shape and nothing more")
                                     << none << ": start from rt::aabb{} and grow it by each shape's box, so that "
                                                "nothing else is inside");
 }
+
+namespace {
+
+/// Why a message starts at another column of the right line: "" when it does
+/// not. `location` is "file:line:col:". A column past the expected one is the
+/// position taken after the value was read (line.here() moves on as it reads).
+std::string position_hint(const std::string& message, const std::string& location)
+{
+    const std::size_t colon = location.rfind(':', location.size() - 2);
+    const std::string line_part = location.substr(0, colon + 1); // "file:line:"
+    if (message.rfind(line_part, 0) != 0)
+        return "";
+    const int expected = std::atoi(location.c_str() + colon + 1), found = std::atoi(message.c_str() + colon + 1);
+    if (found <= expected)
+        return "";
+    return ", found column " + std::to_string(found) + ", past where the value starts: the position taken after "
+           "reading the value; keep line.here() from before reading it";
+}
+
+} // namespace
 
 TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and what was found")
 {
@@ -207,7 +232,8 @@ TEST_CASE("bad scenes: each is one line with file:line:col, the expectation and 
             continue;
         }
         CAPTURE(message);
-        CHECK_MESSAGE(message.rfind(c.location, 0) == 0, "expected the message to start with " << std::string(c.location));
+        CHECK_MESSAGE(message.rfind(c.location, 0) == 0, "expected the message to start with "
+                                                             << std::string(c.location) << position_hint(message, c.location));
         CHECK_MESSAGE(message.find(c.words) != std::string::npos, "expected the words '" << std::string(c.words) << "'");
         CHECK_MESSAGE(message.find("expected") != std::string::npos, "expected the words 'expected ..., found ...'");
         CHECK_MESSAGE(one_line(message), "expected a message of one line");

@@ -129,8 +129,16 @@ TEST_CASE("field of view to window keeps the aspect ratio")
 {
     // fov 90 at d = 1: t = tan(45 deg) = 1; a 200 x 100 image: r = 2.
     const rt::window w = rt::window_from_fov(90, 1, 200, 100);
+    // the field of view not halved shows plainly at fov 60: t = 3 tan(60 degrees)
+    const double full = 3 * std::tan(60 * 3.14159265358979323846 / 180);
+    const double t60 = double(rt::window_from_fov(60, 3, 64, 64).t);
+    const std::string not_halved = std::fabs(t60 - full) < 1e-3 * full
+                                       ? "; for fov 60, d = 3 found t = " + std::to_string(t60) +
+                                             " = d tan(60 degrees): the field of view not halved (the window's "
+                                             "half-height is d tan(fov / 2): in radians fov pi / 360)"
+                                       : "";
     INFO("expected t = d tan(fov / 2), b = -t, r = t nx / ny, l = -r (square pixels): fov 90, d = 1, 200 x 100 "
-         "gives t = 1, r = 2");
+         "gives t = 1, r = 2" << not_halved);
     CHECK(w.t == doctest::Approx(1));
     CHECK(w.b == doctest::Approx(-1));
     CHECK(w.r == doctest::Approx(2));
@@ -491,6 +499,41 @@ TEST_CASE("jittered samples: the same generator state gives the same samples, an
     }
 }
 
+TEST_CASE("jittered samples: every cell draws its own offsets, not one pair reused in all of them")
+{
+    // One pair (xi1, xi2) drawn once and used in every cell is a regular grid
+    // shifted as a whole: uniform in each cell taken alone, so the cases after
+    // this one may pass it (it comes first, to name it), but the cells are not independent. Its 64 offsets agree up
+    // to float rounding (about 1e-5 here); 64 offsets drawn anew all lie
+    // within 0.01 of each other with probability below 64 * 0.01^63, so a
+    // spread of 0.01 or less on either axis is the reused pair.
+    const int n = 8;
+    for (int pixel = 0; pixel < 8; ++pixel) {
+        const int i = 3 + pixel, j = 1;
+        rt::pcg32 rng = generator_for(17, i, j);
+        const std::vector<rt::vec2> samples = rt::jittered_samples(i, j, n, rng);
+        REQUIRE(samples.size() == std::size_t(n * n));
+        double low[2] = {1, 1}, high[2] = {0, 0};
+        for (const rt::vec2& p : samples) {
+            const double t[2] = {(p.x - i) * n, (p.y - j) * n};
+            for (int k = 0; k < 2; ++k) {
+                const double o = t[k] - std::min(std::floor(t[k]), double(n - 1));
+                low[k] = std::min(low[k], o);
+                high[k] = std::max(high[k], o);
+            }
+        }
+        for (int k = 0; k < 2; ++k)
+            CHECK_MESSAGE(high[k] - low[k] > 0.01,
+                          "pixel (" << i << ", " << j << "), n = 8: expected the " << (k == 0 ? "x" : "y")
+                                    << " offsets of the 64 cells drawn anew in each cell, found them all in ["
+                                    << low[k] << ", " << high[k] << "]: one xi" << (k == 0 ? "1" : "2")
+                                    << " reused in every cell; draw xi1 and xi2 inside the loop over the cells, "
+                                       "once per sample");
+        if (!(high[0] - low[0] > 0.01 && high[1] - low[1] > 0.01))
+            break; // one pixel says it; the others would repeat it
+    }
+}
+
 TEST_CASE("jittered samples are uniform in their cells: offsets spread over the whole cell, mean one half")
 {
     // 64 pixels x 8 x 8 samples = 4096 offsets (a + xi) n - a = xi, uniform in [0, 1):
@@ -685,41 +728,6 @@ TEST_CASE("box reconstruction: samples outside the pixel count for nothing, and 
     CHECK(none.r == 0);
     CHECK(none.g == 0);
     CHECK(none.b == 0);
-}
-
-TEST_CASE("jittered samples: every cell draws its own offsets, not one pair reused in all of them")
-{
-    // One pair (xi1, xi2) drawn once and used in every cell is a regular grid
-    // shifted as a whole: uniform in each cell taken alone, so the cases above
-    // may pass it, but the cells are not independent. Its 64 offsets agree up
-    // to float rounding (about 1e-5 here); 64 offsets drawn anew all lie
-    // within 0.01 of each other with probability below 64 * 0.01^63, so a
-    // spread of 0.01 or less on either axis is the reused pair.
-    const int n = 8;
-    for (int pixel = 0; pixel < 8; ++pixel) {
-        const int i = 3 + pixel, j = 1;
-        rt::pcg32 rng = generator_for(17, i, j);
-        const std::vector<rt::vec2> samples = rt::jittered_samples(i, j, n, rng);
-        REQUIRE(samples.size() == std::size_t(n * n));
-        double low[2] = {1, 1}, high[2] = {0, 0};
-        for (const rt::vec2& p : samples) {
-            const double t[2] = {(p.x - i) * n, (p.y - j) * n};
-            for (int k = 0; k < 2; ++k) {
-                const double o = t[k] - std::min(std::floor(t[k]), double(n - 1));
-                low[k] = std::min(low[k], o);
-                high[k] = std::max(high[k], o);
-            }
-        }
-        for (int k = 0; k < 2; ++k)
-            CHECK_MESSAGE(high[k] - low[k] > 0.01,
-                          "pixel (" << i << ", " << j << "), n = 8: expected the " << (k == 0 ? "x" : "y")
-                                    << " offsets of the 64 cells drawn anew in each cell, found them all in ["
-                                    << low[k] << ", " << high[k] << "]: one xi" << (k == 0 ? "1" : "2")
-                                    << " reused in every cell; draw xi1 and xi2 inside the loop over the cells, "
-                                       "once per sample");
-        if (!(high[0] - low[0] > 0.01 && high[1] - low[1] > 0.01))
-            break; // one pixel says it; the others would repeat it
-    }
 }
 
 TEST_CASE("jittered samples with the box on an edge: the covered fraction is off by at most one column of cells")

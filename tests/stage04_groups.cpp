@@ -34,6 +34,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -535,8 +536,21 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
                                                           << ", found " << std::string(b ? "a hit" : "none"));
                         // at an equal t, whether the list's item was asked at all tells a box skipped
                         // under rounding from the tie rule forgotten
+                        // a hit nearer than the list's, or a later item at the same t, is the
+                        // list's mistake: from_list is the student's closest_hit_list
                         std::string cause;
-                        if (a && b && from_list.t == from_groups.t) {
+                        const bool later = std::make_pair(from_groups.shape, from_groups.primitive) >
+                                           std::make_pair(from_list.shape, from_list.primitive);
+                        const bool list_wrong =
+                            a && b && (from_groups.t < from_list.t || (from_list.t == from_groups.t && later));
+                        if (a && b && from_groups.t < from_list.t)
+                            cause = "; your groups found a nearer hit than your list: closest_hit_list returned a "
+                                    "hit that is not the closest (the last one found?): pass the closest t so far as "
+                                    "tmax to the next shape";
+                        else if (a && b && from_list.t == from_groups.t && later)
+                            cause = "; a tie, and your list kept the earlier shape: at an equal t closest_hit_list "
+                                    "keeps the later shape (the tie rule)";
+                        else if (a && b && from_list.t == from_groups.t) {
                             const bool mesh = std::holds_alternative<rt::mesh>(s.shapes[from_list.shape]);
                             bool asked = false;
                             auto asking = [&](std::uint32_t i, const rt::ray& r, real t0, real t1, rt::hit_record& out) {
@@ -554,7 +568,9 @@ TEST_CASE("the closest hit over the groups is the closest hit of the list on ran
                                             "rt::slab_robust_far_factor";
                         }
                         CHECK_MESSAGE(same_hit(s, from_list, from_groups),
-                                      std::string(a && b ? "expected the list's closest hit (from_list), found "
+                                      std::string(list_wrong ? "your closest_hit_list (from_list) and your groups "
+                                                               "(from_groups) disagree, and the list is wrong"
+                                                  : a && b ? "expected the list's closest hit (from_list), found "
                                                            "another (from_groups): the nearest hit, and at an equal t "
                                                            "the later item (from_list is your closest_hit_list: if "
                                                            "stage04_triangle's cases fail too, fix it first)"
@@ -617,7 +633,10 @@ TEST_CASE("a ray that misses the root box tests no item, and along a row of sphe
                         "expected a hit on sphere 63 at t = 10, found none");
         CHECK(rec.shape == 63);
         CHECK(rec.t == 200 - 189 - 1);
-        CHECK_MESSAGE(tests == 1, "expected 1 item tested, found " << tests);
+        CHECK_MESSAGE(tests == 1, "expected 1 item tested, found "
+                                      << tests
+                                      << ": visit the nearer child first (push the farther one first), so that "
+                                         "the nearest item's hit skips the boxes beyond it");
     }
     INFO("an empty scene: no groups, no hit");
     const rt::groups none = rt::build_groups({}, 4);

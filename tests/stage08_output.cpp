@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <string>
 
 #include <rt/byte_level.hpp>
 #include <rt/encoding.hpp>
@@ -118,8 +119,14 @@ TEST_CASE("ACES filmic fit: T(1) = 2.54 / 3.16, reaches 1 at x = 7.24 and stays 
 
 TEST_CASE("sRGB encode at known points (IEC 61966-2-1)")
 {
+    // a plain power curve, named: x^(1/2.2) at 1/2 is 0.72974, sRGB's 0.735357
+    const double half = double(rt::srgb_encode(0.5f));
+    const bool plain_gamma = std::fabs(half - std::pow(0.5, 1 / 2.2)) < 1e-5;
     INFO("expected V = 12.92 x for x <= 0.0031308, else 1.055 x^(1/2.4) - 0.055 (IEC 61966-2-1), increasing, with "
-         "srgb_decode its inverse");
+         "srgb_decode its inverse"
+         << std::string(plain_gamma ? "; found x^(1/2.2) at x = 1/2: a plain gamma 2.2, not the sRGB curve (a line "
+                                      "near 0, then the offset power 1.055 x^(1/2.4) - 0.055)"
+                                    : ""));
     CHECK(rt::srgb_encode(0.0f) == 0.0f);
     CHECK(rt::srgb_encode(1.0f) == doctest::Approx(1.0).epsilon(1e-6)); // 1.055 - 0.055
     // 1.055 * 0.5^(1/2.4) - 0.055

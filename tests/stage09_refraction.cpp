@@ -112,6 +112,55 @@ struct recording_accelerator {
     }
 };
 
+/// The accelerator seen through a probe of the recursion (as in stage 07's
+/// suite): it counts the closest-hit queries and, past `limit` of them, answers
+/// every query with a miss, so a recursion without a depth cap ends after
+/// about `limit` nested calls instead of overflowing the stack.
+struct depth_probe {
+    const rt::accelerator* accel;
+    std::uint64_t* queries;
+    std::uint64_t limit;
+
+    bool closest_hit(const rt::ray& r, rt::real tmin, rt::real tmax, rt::hit_record& rec) const
+    {
+        if (++*queries > limit)
+            return false;
+        return accel->closest_hit(r, tmin, tmax, rec);
+    }
+    bool any_hit(const rt::ray& r, rt::real tmin, rt::real tmax) const { return accel->any_hit(r, tmin, tmax); }
+};
+
+/// The depth the probe traces at, and the queries a capped recursion makes
+/// there at most: every call asks one closest-hit query, and a call at a depth
+/// below max_depth traces at most two new rays (reflected and refracted), so
+/// 1 + 2 + 4 = 7 at max_depth 2. That holds even when the new rays start at
+/// hit.point and meet their own surface at every level (up to 2^13 - 1 = 8191
+/// queries at this suite's max_depth 12), which is why the probe runs at 2.
+const int probe_depth = 2;
+const std::uint64_t capped_queries = 7;
+const std::uint64_t probe_limit = 300; // far above 7, far below what overflows a stack
+
+/// Ends the case with a message naming the depth cap when ray_color_glass does
+/// not stop at s.max_depth: traces r once through depth_probe, in a copy of s
+/// with max_depth 2, before the case traces it for real. Without a cap the
+/// recursion would go on until the stack overflowed (a SIGSEGV that names
+/// nothing); through the probe it ends, and the count names the mistake.
+void require_depth_cap(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
+{
+    rt::scene capped = s;
+    capped.max_depth = probe_depth;
+    std::uint64_t queries = 0;
+    rt::ray_color_glass(capped, depth_probe{&accel, &queries, probe_limit}, r);
+    REQUIRE_MESSAGE(queries <= probe_limit,
+                    "expected the recursion to stop at max_depth = "
+                        << probe_depth << " (at most 1 + 2 + 4 = " << capped_queries
+                        << " closest-hit queries: each ray below max_depth traces at most a reflected and a refracted "
+                           "ray), found it still going after "
+                        << probe_limit << " queries (the test then answered every query with a miss, where the "
+                        "recursion would have gone on until the stack overflowed): no depth cap. Trace the new rays "
+                        "(reflected, refracted, a mirror's) only while depth < s.max_depth, and give them depth + 1");
+}
+
 } // namespace
 
 // --- the refracted direction -------------------------------------------------
@@ -290,6 +339,7 @@ TEST_CASE("a clear glass ball in a uniform sky: L = B (1 - (1 - R) R^(D - 1)), a
         for (double b : {0.0, 0.3, 0.6, 0.9}) {
             for (double length : {1.0, 3.0}) {
                 const rt::ray r{rt::vec3(rt::real(b), 0, 5), rt::vec3(0, 0, rt::real(-length))};
+                require_depth_cap(s, accel, r);
                 const double R = schlick(std::sqrt(1 - b * b), 1.5);
                 const double f = D == 0 ? 0.0 : 1 - (1 - R) * std::pow(R, D - 1);
                 CAPTURE(D);
@@ -325,6 +375,7 @@ TEST_CASE("an absorbing ball seen through its centre: Beer's law exp(-a 2r) on e
         const rt::accelerator accel(s);
         for (double length : {1.0, 2.5}) {
             const rt::ray r{ball.center + rt::vec3(0, 0, 6), rt::vec3(0, 0, rt::real(-length))};
+            require_depth_cap(s, accel, r);
             const rt::color L = rt::ray_color_glass(s, accel, r);
             double want[3];
             for (int c = 0; c < 3; ++c) {
@@ -357,6 +408,7 @@ TEST_CASE("leaving glass beyond the critical angle: only the reflected ray is tr
         const double theta = degrees * pi / 180;
         // |d| = 2: the distance travelled inside is t |d|, not t
         const rt::ray r{rt::vec3(0, 0, -1), rt::vec3(rt::real(2 * std::sin(theta)), 0, rt::real(2 * std::cos(theta)))};
+        require_depth_cap(s, accel, r);
         std::uint64_t queries = 0;
         const rt::color L = rt::ray_color_glass(s, rt::counting_accelerator{&accel, &queries}, r);
         const bool tir = degrees > 42;
@@ -392,6 +444,7 @@ TEST_CASE("a glass slab, traced: the ray leaving it is parallel to the camera ra
         const rt::vec3 d = incoming(theta);
         const rt::vec3 entry(0, 0, h);
         std::vector<rt::ray> rays;
+        require_depth_cap(s, accel, rt::ray{entry - rt::real(3) * d, d});
         rt::ray_color_glass(s, recording_accelerator{&accel, &rays}, rt::ray{entry - rt::real(3) * d, d});
         CAPTURE(degrees);
         const rt::ray* leaving = nullptr;
@@ -435,6 +488,7 @@ TEST_CASE("mirrors trace with glass: a mirror shows a glass ball as glass, and t
     add_square_z(s, rt::real(0.5), 0, 1);
     const rt::accelerator accel(s);
     const double f = km * (R * km + T * (1 + R * km) / (1 + R));
+    require_depth_cap(s, accel, rt::ray{rt::vec3(-3, 0, 3), rt::vec3(1, 0, -1)});
     INFO("expected km * (what the glass ball shows) = " << f << " B; 0 means the mirror saw the ball as opaque: "
          "trace the mirror ray with ray_color_glass");
     check_color(rt::ray_color_glass(s, accel, rt::ray{rt::vec3(-3, 0, 3), rt::vec3(1, 0, -1)}), f * 0.2, f * 0.6, f,
@@ -452,6 +506,7 @@ TEST_CASE("mirrors trace with glass: a mirror shows a glass ball as glass, and t
         add_square_z(m, 5, 2, 0, false);
         const rt::accelerator walls(m);
         const double expected = 0.1 * (1 - std::pow(0.9, D + 1)) / (1 - 0.9);
+        require_depth_cap(m, walls, rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)});
         CAPTURE(D);
         INFO("two facing mirrors (ka 0.1, km 0.9): expected the geometric sum of stage 07, " << expected);
         check_color(rt::ray_color_glass(m, walls, rt::ray{rt::vec3(0.1f, 0.2f, 1), rt::vec3(0, 0, -1)}), expected,
@@ -489,6 +544,7 @@ TEST_CASE("a clear ball far from the origin stays invisible: rays leaving a surf
                     continue;
                 // aim parallel to the axis, at impact parameter sqrt(u^2 + v^2)
                 const rt::vec3 origin = eye + rt::real(scale) * rt::vec3(rt::real(u), rt::real(v), 0);
+                require_depth_cap(s, accel, rt::ray{origin, rt::vec3(0, 0, -1)});
                 const rt::color L = rt::ray_color_glass(s, accel, rt::ray{origin, rt::vec3(0, 0, -1)});
                 const double b2 = u * u + v * v, R = schlick(std::sqrt(1 - b2), 1.5);
                 const double f = 1 - (1 - R) * std::pow(R, D - 1);

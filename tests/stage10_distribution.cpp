@@ -228,6 +228,16 @@ TEST_CASE("thin_lens_ray: each ray starts on the lens disk and meets its pinhole
                 o << "the lens point " << rt_doctest::text(lens) << " gave the ray from " << rt_doctest::text(r.origin)
                   << " along " << rt_doctest::text(r.direction) << ": it meets the plane in focus at "
                   << rt_doctest::text(met) << " where the pinhole ray meets it at " << rt_doctest::text(sharp);
+                // the two ways this goes wrong, named: the pinhole's direction kept, or
+                // the point in focus taken at distance focus along d instead of along -w
+                const rt::vec3 unit_r = glm::normalize(r.direction), unit_d = glm::normalize(d);
+                const rt::vec3 along_d = e + focus * unit_d;
+                const rt::vec3 to_along_d = along_d - r.origin;
+                if (glm::length(glm::cross(unit_r, unit_d)) < 1e-5f)
+                    o << " (the ray keeps the pinhole ray's direction d: aim it at the point in focus instead)";
+                else if (glm::length(to_along_d - glm::dot(to_along_d, unit_r) * unit_r) < 1e-4f * focus)
+                    o << " (the ray aims at e + focus d / |d|, at distance focus along d: the point in focus is "
+                         "where the pinhole ray has gone focus along -w, e + (focus / (-d.w)) d)";
             });
     }
     {

@@ -6,6 +6,8 @@
     python3 tools/check_kit.py --no-reference --only 7,9   # two per-stage kits, while working on them
     python3 tools/check_kit.py --leaks                     # the leak check alone (every kit, in memory)
     python3 tools/check_kit.py --leaks ../rt-week3         # the leak check of kits written to folders
+    python3 tools/check_kit.py --no-reference --mistakes   # CI: then every page's mistakes, planted
+    python3 tools/check_kit.py --mistakes-only --only 4    # stage 04's planted mistakes alone
 
 1. The markers are valid (tools/make_kit.py --check).
 1b. No kit make_kit writes (--from-stage N, for every stage N) holds an exercise's answer
@@ -38,6 +40,14 @@
    later stage stripped at once (check_programs_stop). --real-kits builds each kit instead.
    (make_kit writes no such kit: it strips a stage with every later one. A kit stripping
    one stage is the proof that each stage's tests fail alone.)
+4b. The switchable kit with nothing stripped (every region filled back from the reference)
+   passes its whole ctest: every label, not only the stage suites (solved_report).
+5. With --mistakes: every mistake a stage page lists under "Common mistakes" (each table row,
+   each bold list item; tools/planted_mistakes.py holds one edit per row, and its coverage
+   check fails on a row without one) is planted into the switchable kit, one at a time; only
+   the suites of the stage that shows it are rebuilt (ccache makes a repeat nearly free), and
+   the case the row names must fail first, with words that name the mistake. One line each:
+   "check_kit: planted stage NN: <row>: ok (<case>)".
 A failing case of stage k that names another stage's exercise is a bug in that test (it
 calls another stage's exercise) and is reported by name. A library case (tests/library_*,
 never graded) passes, or fails only with the not-done message of a stage the kit strips: the
@@ -69,6 +79,7 @@ from typing import Dict, List, Optional, Sequence, Set, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import make_kit  # noqa: E402  (the sibling module)
+import planted_mistakes  # noqa: E402  (the sibling module)
 
 NOT_DONE_RE = re.compile(r'stage (?P<stage>[0-9]{2}): (?P<title>[^\n"]+?): see (?P<page>[^\s"\']+)')
 
@@ -434,6 +445,24 @@ def traced_run(kit_build: Path, args: argparse.Namespace, work: Path) -> Tuple[O
 PER_STAGE_OPTIONS = ["-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_SDL2=ON"]
 
 
+def solved_report(cases: List[CaseResult], seconds: float) -> KitReport:
+    """The kit with every exercise solved (each region filled back from the reference)
+    passes its whole ctest: every label, the stage suites, the library's, the bad-input
+    rows, the programs' and the docs' checks (the tools' own tests, label tools, aside:
+    CI's ordinary ctest run has them)."""
+    report = KitReport("every exercise solved: the kit's whole ctest passes")
+    report.cases = len(cases)
+    report.passed = sum(c.passed for c in cases)
+    report.seconds = seconds
+    report.problems.extend(vacuous(cases))
+    for c in cases:
+        if not c.passed:
+            report.problems.append(f"{c.name}: fails with every exercise solved: {first_line(c.output)}")
+    labels = sorted({c.name.split(".")[0] for c in cases})
+    report.notes.append(f"{len(cases)} tests of {len(labels)} kinds ({', '.join(labels)})")
+    return report
+
+
 def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: List[Tuple[str, Set[int]]],
                      args: argparse.Namespace, work: Path, region_messages: Dict[str, int]) -> List[KitReport]:
     """The per-stage kits from one build: the switchable kit (make_kit.switchable_plan)
@@ -464,6 +493,8 @@ def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: Lis
             log(f"check_kit: note: no trace ({why}); every stage reruns every test")
         else:
             log(f"check_kit: the traced run with nothing stripped took {time.monotonic() - t1:.0f} s")
+            reports.append(solved_report(trace.cases, time.monotonic() - t1))
+            print_report(reports[-1])
     for name, stripped in per_stage:
         report = KitReport(name)
         t1 = time.monotonic()
@@ -504,6 +535,72 @@ def check_switchable(source: Path, kit: Path, builder: "Builder", per_stage: Lis
     reports.append(report)
     print_report(report)
     return reports
+
+
+# --------------------------------------------------------------------------
+# Planted mistakes: every mistake a stage page lists, in a kit with every
+# exercise solved, fails first in the test that names it
+# --------------------------------------------------------------------------
+
+def suite_binaries(kit: Path, build: Path, stage: int) -> List[Tuple[str, Path]]:
+    """A stage's test suites (target, binary) in the order ctest runs them."""
+    files = sorted(make_kit.known_stages(kit).get(stage, []))
+    return [(f"test_{Path(f).stem}", build / "tests" / f"test_{Path(f).stem}") for f in files]
+
+
+def run_suites(kit: Path, build: Path, stage: int, timeout: int) -> planted_mistakes.FirstFailure:
+    """Runs stage `stage`'s suites in ctest's order (doctest's file order within each)
+    and returns the first failing case; every region solved (RT_KIT_STRIP unset)."""
+    env = {k: v for k, v in os.environ.items() if k not in ("RT_KIT_STRIP", "RT_KIT_TRACE")}
+    for target, exe in suite_binaries(kit, build, stage):
+        ok, out = run([str(exe), "--no-colors=true"], cwd=exe.parent, timeout=timeout, env=env)
+        first = planted_mistakes.first_failure(out)
+        if first:
+            return planted_mistakes.FirstFailure(first[0], first[1], target)
+        if not ok:  # no case named: a crash doctest did not catch, or a timeout
+            return planted_mistakes.FirstFailure(f"({target} ended without naming a case)", out[-600:], target)
+    return planted_mistakes.FirstFailure()
+
+
+def check_mistakes(source: Path, kit: Path, builder: "Builder", only: Optional[Set[int]], timeout: int) -> KitReport:
+    """Plants each mistake of tools/planted_mistakes.py in `kit` (every region solved),
+    one at a time: rebuilds only the suites of the stage that shows it, runs them, and
+    checks that the case the mistake names fails first with words naming the mistake.
+    The kit's files are put back after each."""
+    report = KitReport("planted mistakes: each fails first in the test that names it")
+    t0 = time.monotonic()
+    report.problems += planted_mistakes.coverage(source)
+    mistakes = [m for m in planted_mistakes.MISTAKES if only is None or m.stage in only]
+    for mistake in mistakes:
+        report.cases += 1
+        originals, planted, problems = planted_mistakes.planted_texts(kit, mistake)
+        if problems:
+            report.problems += problems
+            continue
+        try:
+            for rel, text in planted.items():
+                (kit / rel).write_text(text, encoding="utf-8")
+            targets = [t for t, _ in suite_binaries(kit, builder.build, mistake.shown_by)]
+            ok, out = builder.targets(targets)
+            if not ok:
+                report.problems.append(f"{mistake.label()}: the planted mistake does not build: {first_error(out)}")
+                continue
+            found = run_suites(kit, builder.build, mistake.shown_by, timeout)
+        finally:
+            for rel, text in originals.items():
+                (kit / rel).write_text(text, encoding="utf-8")
+        problems = planted_mistakes.judge(mistake, found)
+        report.problems += problems
+        log(f"check_kit: planted {mistake.label()}: "
+            + ("ok" if not problems else "FAILED") + f" ({found.case[:60] or 'nothing fails'})")
+        if not problems:
+            report.passed += 1
+            report.notes.append(f"{mistake.label()} -> stage{mistake.shown_by:02d}.{found.case[:70]}: "
+                                f"{planted_mistakes.message_excerpt(mistake, found.output)}")
+    # the suites as they were, so that nothing after this runs a planted binary
+    builder.targets([t for s in sorted({m.shown_by for m in mistakes}) for t, _ in suite_binaries(kit, builder.build, s)])
+    report.seconds = time.monotonic() - t0
+    return report
 
 
 # --------------------------------------------------------------------------
@@ -744,6 +841,12 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--only", metavar="N[,N...]",
                         help="only these per-stage kits, without the kit of every stage stripped (while "
                              "working on a stage; CI checks them all)")
+    parser.add_argument("--mistakes", action="store_true",
+                        help="after the kits, plant every mistake the stage pages list into the switchable kit "
+                             "(every exercise solved), one at a time, and check which case fails first and that "
+                             "its message names the mistake (tools/planted_mistakes.py)")
+    parser.add_argument("--mistakes-only", action="store_true",
+                        help="the planted mistakes alone (with --only: of those stages), on the switchable kit")
     parser.add_argument("--leaks", nargs="*", metavar="KIT",
                         help="run the leak check alone: on every kit make_kit writes (in memory), or on the "
                              "kit folders given")
@@ -782,6 +885,19 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     work.mkdir(parents=True, exist_ok=True)
     doc_of = {s: make_kit.stage_doc(source, s) for s in all_stages}
     region_messages = {make_kit.not_done_message(r, doc_of.get(r.stage)): r.stage for r in regions}
+
+    if args.mistakes_only:
+        chosen_stages = {int(x) for x in args.only.split(",") if x.strip()} if args.only else None
+        kit = work / "kit"
+        make_kit.sync_kit(source, make_kit.switchable_plan(source), kit)
+        builder = Builder(kit, kit / "build", args.jobs, None)
+        builder.extra = PER_STAGE_OPTIONS
+        report = check_mistakes(source, kit, builder, chosen_stages, args.timeout)
+        print_report(report)
+        failed = 1 if report.problems else 0
+        log(f"check_kit: took {time.monotonic() - started:.0f} s")
+        log(f"check_kit: {1 - failed} passed, {failed} failed")
+        return failed
 
     # 2. the reference
     if not args.no_reference:
@@ -888,6 +1004,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
     if not args.real_kits and per_stage:
         reports += check_switchable(source, kit, builder, per_stage, args, work, region_messages)
+
+    if args.mistakes:
+        if args.real_kits:  # the switchable kit, every region solved
+            make_kit.sync_kit(source, make_kit.switchable_plan(source), kit)
+            builder.extra = PER_STAGE_OPTIONS
+            builder.configured = False
+        chosen_stages = {s for _, stripped in per_stage for s in stripped} if args.only else None
+        report = check_mistakes(source, kit, builder, chosen_stages, args.timeout)
+        reports.append(report)
+        print_report(report)
 
     # every exercise reached by at least one failing case (a warning: a case stops at
     # the first exercise it meets, so an exercise may be hidden behind another)

@@ -70,6 +70,23 @@ class Judge(unittest.TestCase):
         self.assertIn("none of its cases fails", report.problems[0])
 
 
+class Solved(unittest.TestCase):
+    """The kit with every exercise solved passes every test, whatever its label."""
+
+    def test_every_label_must_pass(self):
+        cases = [check_kit.CaseResult("stage03.a case", 3, True, ""),
+                 check_kit.CaseResult("docs.figures", 0, False, "docs/stages/03-sphere.md:122: figure x: the page says '1'"),
+                 check_kit.CaseResult("reliability.bad_input.camera_far_eye", 0, True, "")]
+        report = check_kit.solved_report(cases, 1.0)
+        self.assertEqual(len(report.problems), 1)
+        self.assertIn("docs.figures: fails with every exercise solved", report.problems[0])
+        self.assertIn("docs, reliability, stage03", report.notes[0])
+
+    def test_all_passing_is_no_problem(self):
+        report = check_kit.solved_report([check_kit.CaseResult("library.x", 0, True, "")], 1.0)
+        self.assertEqual(report.problems, [])
+
+
 class ProgramsStop(unittest.TestCase):
     """check_programs_stop: each stage program runs once with every later stage stripped
     and must exit 0; a program that reaches a later stage's code (exit 3) is named."""
