@@ -446,7 +446,7 @@ def excerpt(block: str, limit: int = 400) -> str:
 
 def message_excerpt(mistake: Mistake, block: str, limit: int = 160) -> str:
     """The part of the first failure's output around the first of the mistake's words."""
-    flat = " ".join(block.split())
+    flat = " ".join(TEST_CASE_RE.sub("", block).split())  # the messages, not the case's name
     at = flat.lower().find(mistake.names[0].lower()) if mistake.names else -1
     if at < 0:
         return excerpt(block, limit)
