@@ -247,12 +247,12 @@ TEST_CASE("fuzz: a long path is shortened in a message without cutting a UTF-8 c
     std::string path;
     for (int i = 0; i < 200; ++i)
         path += "\xC3\xA9"; // e with an acute accent, 2 bytes
-    const std::string shown = rt::shown_path(path + "/m.obj");
+    const std::string shown = rt::detail::shown_path(path + "/m.obj");
     CHECK(shown.size() <= 3 + 160);
     CHECK(starts_with(shown, "...\xC3\xA9"));
     CHECK(is_one_text_line(shown));
-    CHECK(rt::shown_path("short/path.obj") == "short/path.obj");
-    CHECK(rt::shown_path("a\nb") == "a?b");
+    CHECK(rt::detail::shown_path("short/path.obj") == "short/path.obj");
+    CHECK(rt::detail::shown_path("a\nb") == "a?b");
 }
 
 // --- found by review ------------------------------------------------------------

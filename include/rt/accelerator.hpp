@@ -72,15 +72,15 @@ enum class accelerator_kind {
 constexpr std::size_t flat_list_crossover = 4;
 
 /// The names of the accelerator kinds; the first is the default.
-inline constexpr enum_name<accelerator_kind> accelerator_names[] = {
+inline constexpr detail::enum_name<accelerator_kind> accelerator_names[] = {
     {accelerator_kind::automatic, "auto"}, {accelerator_kind::flat, "flat"}, {accelerator_kind::bvh, "bvh"}};
 
-inline const char* name_of(accelerator_kind kind) { return name_in(accelerator_names, kind); }
+inline const char* name_of(accelerator_kind kind) { return detail::name_in(accelerator_names, kind); }
 
 /// "flat", "bvh" or "auto"; anything else is an rt::error.
 inline accelerator_kind parse_accelerator_kind(const std::string& word)
 {
-    if (const std::optional<accelerator_kind> kind = value_named(accelerator_names, word))
+    if (const std::optional<accelerator_kind> kind = detail::value_named(accelerator_names, word))
         return *kind;
     throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
 }
@@ -94,10 +94,10 @@ enum class bvh_path {
 };
 
 /// The names of the BVH paths; the first is the default.
-inline constexpr enum_name<bvh_path> bvh_path_names[] = {
+inline constexpr detail::enum_name<bvh_path> bvh_path_names[] = {
     {bvh_path::automatic, "auto"}, {bvh_path::scalar, "scalar"}, {bvh_path::sse, "sse"}, {bvh_path::avx2, "avx2"}};
 
-inline const char* name_of(bvh_path path) { return name_in(bvh_path_names, path); }
+inline const char* name_of(bvh_path path) { return detail::name_in(bvh_path_names, path); }
 
 /// "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)": a path and its node width, for reports.
 inline const char* describe(bvh_path path)
@@ -314,7 +314,7 @@ private:
         const shape& item = scene_->shapes[ref.shape];
         if (const sphere* ball = std::get_if<sphere>(&item)) {
             hit_sphere(*ball, r, tmin, tmax, rec); // the same call as in the search: the same root
-            refine_sphere_hit(*ball, r, rec);
+            detail::refine_sphere_hit(*ball, r, rec);
         } else {
             // the corners as packed (the same numbers as in the shape)
             const real* v = h.corners;

@@ -19,20 +19,20 @@ namespace rt {
 enum class aov_kind { none, depth, normal, position, rays };
 
 /// The names of the debug images; "shaded" (aov_kind::none) is not a debug image.
-inline constexpr enum_name<aov_kind> aov_names[] = {{aov_kind::none, "shaded"},
-                                                    {aov_kind::depth, "depth"},
-                                                    {aov_kind::normal, "normal"},
-                                                    {aov_kind::position, "position"},
-                                                    {aov_kind::rays, "rays"}};
+inline constexpr detail::enum_name<aov_kind> aov_names[] = {{aov_kind::none, "shaded"},
+                                                            {aov_kind::depth, "depth"},
+                                                            {aov_kind::normal, "normal"},
+                                                            {aov_kind::position, "position"},
+                                                            {aov_kind::rays, "rays"}};
 
 /// The debug image a name means ("depth", "normal", "position", "rays"), or nothing.
 inline std::optional<aov_kind> aov_from_name(const std::string& name)
 {
-    const std::optional<aov_kind> kind = value_named(aov_names, name);
+    const std::optional<aov_kind> kind = detail::value_named(aov_names, name);
     return kind == aov_kind::none ? std::nullopt : kind;
 }
 
 /// "shaded" for aov_kind::none, otherwise the name aov_from_name reads.
-inline const char* name_of(aov_kind kind) { return name_in(aov_names, kind); }
+inline const char* name_of(aov_kind kind) { return detail::name_in(aov_names, kind); }
 
 } // namespace rt

@@ -21,16 +21,16 @@ namespace rt {
 enum class tonemap_kind { clamp, reinhard, aces };
 
 /// The names of the tone maps; the first is the default.
-inline constexpr enum_name<tonemap_kind> tonemap_names[] = {
+inline constexpr detail::enum_name<tonemap_kind> tonemap_names[] = {
     {tonemap_kind::clamp, "clamp"}, {tonemap_kind::reinhard, "reinhard"}, {tonemap_kind::aces, "aces"}};
 
 /// The tone map a name means ("clamp", "reinhard", "aces"), or nothing.
 inline std::optional<tonemap_kind> tonemap_from_name(const std::string& name)
 {
-    return value_named(tonemap_names, name);
+    return detail::value_named(tonemap_names, name);
 }
 
-inline const char* name_of(tonemap_kind kind) { return name_in(tonemap_names, kind); }
+inline const char* name_of(tonemap_kind kind) { return detail::name_in(tonemap_names, kind); }
 
 /// The curve from a tone-mapped value in [0, 1] to the value stored.
 enum class transfer_kind { srgb, gamma };

@@ -31,6 +31,7 @@
 
 namespace rt {
 
+namespace detail {
 /// The length of the shortest edit from a to b (Levenshtein), for "did you mean".
 inline std::size_t edit_distance(const std::string& a, const std::string& b)
 {
@@ -48,6 +49,7 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b)
     }
     return row[b.size()];
 }
+} // namespace detail
 
 /// Shortens what a file contained for an error message, so a message never
 /// dumps file contents: at most 24 printable characters, quoted.
@@ -71,7 +73,7 @@ inline std::string nearest_hint(const std::string& word, const std::vector<std::
     const std::string prefix = word.substr(0, compared);
     std::size_t best = 0, best_distance = std::numeric_limits<std::size_t>::max();
     for (std::size_t i = 0; i < known.size(); ++i) {
-        const std::size_t distance = edit_distance(prefix, known[i].substr(0, compared));
+        const std::size_t distance = detail::edit_distance(prefix, known[i].substr(0, compared));
         if (distance < best_distance) {
             best = i;
             best_distance = distance;

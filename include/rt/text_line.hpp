@@ -152,7 +152,7 @@ public:
     /// An error at the cursor: "expected <expected>, found <the next word>".
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
+        return parse_error(here(), expected, done() ? "the end of the line" : "'" + detail::printable(peek_word(), 24) + "'", hint);
     }
 
     /// A finite number of magnitude at most `largest` (rt::real's largest by

@@ -197,7 +197,7 @@ int main(int argc, char** argv)
 
         // the renderer, the BVH and the stage-07 colour are compiled once
         // (support_frame.cpp): an edit to a stage-08 exercise rebuilds none of them
-        rt::progress_bar bar(std::cerr, !set.quiet && rt::stderr_is_terminal());
+        rt::progress_bar bar(std::cerr, !set.quiet && rt::detail::stderr_is_terminal());
         const rt::render_result result =
             set.pattern != pattern_kind::none
                 ? stage::render_image(

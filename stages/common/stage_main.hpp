@@ -98,7 +98,7 @@ int run(const char* program, Body&& body)
     } catch (const std::bad_alloc&) {
         const std::uint64_t limit = rt::memory_limit();
         std::cerr << program << ": expected enough memory for the work, found an allocation refused ("
-                  << (limit > 0 ? "the memory limit, ulimit -v, is " + rt::mebibytes(limit)
+                  << (limit > 0 ? "the memory limit, ulimit -v, is " + rt::detail::mebibytes(limit)
                                 : std::string("the machine's memory is used up"))
                   << "); make the image or the scene smaller\n";
         return 1;

@@ -288,7 +288,7 @@ public:
                 if (next_command_ < commands_.size())
                     where = " at " + rt::to_string(commands_[next_command_].where) + " ('" +
                             commands_[next_command_].name + "')";
-                throw rt::error("timed out after " + rt::format_duration(set_.timeout) + where);
+                throw rt::error("timed out after " + rt::detail::format_duration(set_.timeout) + where);
             }
         }
         return 0;
@@ -513,9 +513,9 @@ private:
                 title << " done";
             else
                 title << ' ' << int(status_.level_fraction * 100) << '%';
-            title << " - " << rt::format_duration(status_.seconds);
+            title << " - " << rt::detail::format_duration(status_.seconds);
             if (status_.seconds > 0)
-                title << " - " << rt::format_count(double(status_.rays) / status_.seconds) << "rays/s";
+                title << " - " << rt::detail::format_count(double(status_.rays) / status_.seconds) << "rays/s";
         }
         SDL_SetWindowTitle(window_.get(), title.str().c_str());
     }

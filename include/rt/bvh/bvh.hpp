@@ -98,7 +98,7 @@ public:
         stats_.primitives = count;
         if (count == 0)
             return;
-        if (count >= std::size_t(leaf_flag))
+        if (count >= std::size_t(detail::leaf_flag))
             throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(count));
         check(options);
         bvh_options used = options;
@@ -186,12 +186,12 @@ public:
         return traverse<true, true>(r, tmin, tmax, unused);
     }
 
-    const detail::large_array<bvh_node>& nodes() const { return nodes_; }
+    const detail::large_array<detail::bvh_node>& nodes() const { return nodes_; }
     /// The leaves' primitives as blocks of four, in the order the nodes meet
     /// the leaves (a leaf's reference in bvh_node::child is leaf_flag | its
     /// first block); a primitive that spatial splits cut appears once per leaf
     /// that holds a piece of it.
-    const detail::large_array<triangle_block>& blocks() const
+    const detail::large_array<detail::triangle_block>& blocks() const
     {
         return blocks_;
     }
@@ -232,12 +232,12 @@ private:
         std::vector<leaf_blocks> leaves;
         leaves.reserve(stats_.leaves);
         std::size_t block_count = 0;
-        for (bvh_node& node : nodes_)
+        for (detail::bvh_node& node : nodes_)
             for (int c = 0; c < bvh_width; ++c) {
-                if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
+                if (!(node.child[c] & detail::leaf_flag) || node.count[c] == 0)
                     continue;
-                leaves.push_back(leaf_blocks{node.child[c] & ~leaf_flag, node.count[c], std::uint32_t(block_count)});
-                node.child[c] = leaf_flag | std::uint32_t(block_count);
+                leaves.push_back(leaf_blocks{node.child[c] & ~detail::leaf_flag, node.count[c], std::uint32_t(block_count)});
+                node.child[c] = detail::leaf_flag | std::uint32_t(block_count);
                 block_count += (node.count[c] + 3) / 4;
             }
         blocks_.resize(block_count); // not written yet: every block is assigned below
@@ -257,7 +257,7 @@ private:
                         const std::uint32_t n = std::min<std::uint32_t>(4, leaf.count - done);
                         for (std::uint32_t lane = 0; lane < n; ++lane)
                             lanes[lane] = &prims[items[leaf.first_item + done + lane].index];
-                        blocks_[leaf.first_block + done / 4] = RT_BVH_ABI::pack_triangle_block(lanes, n); // (layout.hpp)
+                        blocks_[leaf.first_block + done / 4] = detail::RT_BVH_ABI::pack_triangle_block(lanes, n); // (layout.hpp)
                     }
                 }
             },
@@ -278,8 +278,8 @@ private:
         real closest_t = tmax; // a hit must have t <= closest_t: tmax, then the closest hit so far
         std::uint32_t child = 0, count = 0; // the root
         for (;;) {
-            if (!(child & leaf_flag)) {
-                const bvh_node& node = nodes_[child];
+            if (!(child & detail::leaf_flag)) {
+                const detail::bvh_node& node = nodes_[child];
                 alignas(32) real tnear[bvh_width];
                 const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
                                         : detail::intersect_children(node, nr, tmin, closest_t, tnear);
@@ -291,7 +291,7 @@ private:
                 // a leaf: its blocks of four, each tested at once
                 // (leaf_test.hpp); a block's hits are taken by replaces(),
                 // so the closest hit does not depend on the order of the lanes
-                const triangle_block* block = blocks_.data() + (child & ~leaf_flag);
+                const detail::triangle_block* block = blocks_.data() + (child & ~detail::leaf_flag);
                 for (std::uint32_t done = 0; done < count; done += 4, ++block) {
                     detail::block_hits hits;
                     int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
@@ -328,7 +328,7 @@ private:
                         for (int j = 0; j < 4; ++j)
                             p.v[j] = block->v[j][lane];
                         primitive_hit h;
-                        if (intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
+                        if (detail::intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
                             best = h;
                             if (any_hit)
                                 return true;
@@ -353,8 +353,8 @@ private:
         }
     }
 
-    detail::large_array<bvh_node> nodes_;          // large_array: huge pages (parallel_fill.hpp)
-    detail::large_array<triangle_block> blocks_;
+    detail::large_array<detail::bvh_node> nodes_;  // large_array: huge pages (parallel_fill.hpp)
+    detail::large_array<detail::triangle_block> blocks_;
     bool has_spheres_ = false;
     bvh_stats stats_;
 };

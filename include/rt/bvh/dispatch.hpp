@@ -20,7 +20,7 @@
 //    here reads it). MSVC compiles AVX2 intrinsics in any function and needs
 //    none (not checked in CI);
 //  - in the namespaces rt::bvh_w8 and rt::detail::bvh_w8, not inline, so that
-//    rt::bvh, rt::bvh_node... stay the unit's 4-wide ones (layout.hpp links
+//    rt::bvh, rt::detail::bvh_node... stay the unit's 4-wide ones (layout.hpp links
 //    the section's names to its own width).
 //
 // Why it is safe:

@@ -100,6 +100,7 @@ inline bool replaces(const primitive_hit& candidate, const primitive_hit& best)
     return replaces(candidate.t, candidate.id, best);
 }
 
+namespace detail {
 /// Intersects one packed primitive with the library's default methods: the
 /// watertight triangle test and rt::hit_sphere.
 inline bool intersect_packed(const packed_primitive& p, const ray& r, const watertight_ray& w, real tmin, real tmax,
@@ -130,6 +131,7 @@ inline bool intersect_packed(const packed_primitive& p, const ray& r, const wate
     hit.stride = 1;
     return true;
 }
+} // namespace detail
 
 /// The flat list over packed primitives: every primitive tested, the closest
 /// kept by replaces(). For scenes too small to pay for a BVH.
@@ -140,7 +142,7 @@ inline bool closest_flat(const std::vector<packed_primitive>& prims, const ray& 
     bool found = false;
     for (const packed_primitive& p : prims) {
         primitive_hit h;
-        if (intersect_packed(p, r, w, tmin, found ? best.t : tmax, h) && (!found || replaces(h, best))) {
+        if (detail::intersect_packed(p, r, w, tmin, found ? best.t : tmax, h) && (!found || replaces(h, best))) {
             best = h;
             found = true;
         }
@@ -154,7 +156,7 @@ inline bool any_flat(const std::vector<packed_primitive>& prims, const ray& r, r
     const watertight_ray w = make_watertight_ray(r);
     primitive_hit h;
     for (const packed_primitive& p : prims)
-        if (intersect_packed(p, r, w, tmin, tmax, h))
+        if (detail::intersect_packed(p, r, w, tmin, tmax, h))
             return true;
     return false;
 }
