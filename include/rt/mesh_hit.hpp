@@ -48,7 +48,7 @@ inline bool hit_mesh_triangle(const mesh& m, std::size_t i, const ray& r, real t
 } // namespace detail
 
 /// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in
-/// turn (the BVH of intersect.hpp does the same work faster). When two
+/// turn (the BVH of accelerator.hpp does the same work faster). When two
 /// triangles give the same t, the later one is kept, as the scene's flat list
 /// does.
 inline bool hit_mesh(const mesh& m, const ray& r, real tmin, real tmax, hit_record& rec)
