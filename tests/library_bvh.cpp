@@ -833,9 +833,9 @@ TEST_CASE("flat and BVH accelerators, scalar and SIMD traversal agree hit for hi
             rt::primitive_hit scalar_hit, simd_hit;
             bool tree_scalar = false, tree_simd = false, any_agree = false;
             tree.with_tree([&](const auto& t) { // the tree of the path the accelerator walks
-                tree_scalar = t.closest_scalar(r, 0, rt::infinity, scalar_hit);
-                tree_simd = t.closest(r, 0, rt::infinity, simd_hit);
-                any_agree = t.any_scalar(r, 0, rt::infinity) == t.any(r, 0, rt::infinity);
+                tree_scalar = t.closest_hit_scalar(r, 0, rt::infinity, scalar_hit);
+                tree_simd = t.closest_hit(r, 0, rt::infinity, simd_hit);
+                any_agree = t.any_hit_scalar(r, 0, rt::infinity) == t.any_hit(r, 0, rt::infinity);
             });
             bool agree = flat_hit == tree_hit && tree_scalar == tree_simd && tree_hit == tree_simd && any_agree &&
                          flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity);

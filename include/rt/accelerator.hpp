@@ -189,13 +189,13 @@ public:
         primitive_hit h;
         bool found = false;
         if (kind_ == accelerator_kind::flat)
-            found = closest_flat(flat_, r, tmin, tmax, h);
+            found = closest_hit_flat(flat_, r, tmin, tmax, h);
 #if RT_BVH_DISPATCH
         else if (wide_) // the 8-wide walk, compiled for AVX2: a call, never inlined here
-            found = wide_->closest(r, tmin, tmax, h);
+            found = wide_->closest_hit(r, tmin, tmax, h);
 #endif
         else
-            found = tree_.closest(r, tmin, tmax, h);
+            found = tree_.closest_hit(r, tmin, tmax, h);
         if (!found)
             return false;
         complete(r, tmin, tmax, h, rec);
@@ -207,12 +207,12 @@ public:
     bool any_hit(const ray& r, real tmin, real tmax) const
     {
         if (kind_ == accelerator_kind::flat)
-            return any_flat(flat_, r, tmin, tmax);
+            return any_hit_flat(flat_, r, tmin, tmax);
 #if RT_BVH_DISPATCH
         if (wide_)
-            return wide_->any(r, tmin, tmax);
+            return wide_->any_hit(r, tmin, tmax);
 #endif
-        return tree_.any(r, tmin, tmax);
+        return tree_.any_hit(r, tmin, tmax);
     }
 
     /// flat or bvh (automatic is resolved when the accelerator is built).

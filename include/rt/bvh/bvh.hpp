@@ -27,19 +27,19 @@
 //   descend.hpp         the child a ray enters next, the others pushed
 //   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
 //   hit_fill.hpp        a hit's record from its block (SSE), for rt::accelerator
-//   bvh.hpp             this file: build, then closest() and any()
+//   bvh.hpp             this file: build, then closest_hit() and any_hit()
 //   dispatch.hpp        the 8-wide path again, for AVX2 CPUs, in a unit built without AVX2
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
 //     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
 //     const rt::bvh tree(prims);
 //     rt::primitive_hit hit;
-//     if (tree.closest(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
-//     const bool blocked = tree.any(shadow_ray, 0, 1);
+//     if (tree.closest_hit(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
+//     const bool blocked = tree.any_hit(shadow_ray, 0, 1);
 //
 // Traversal keeps a fixed-size stack of children with their entry distances
 // (no allocation per ray) and skips an entry whose distance is beyond the
-// closest hit found meanwhile; any() returns at the first hit and pushes
+// closest hit found meanwhile; any_hit() returns at the first hit and pushes
 // children unsorted (their order cannot change its answer). The next child is
 // chosen by one jump on the mask of children met, whose cases know their
 // children at compile time (descend.hpp): on coherent rays the jump is
@@ -160,27 +160,27 @@ public:
     }
 
     /// The closest hit in [tmin, tmax] by replaces(), or false.
-    bool closest(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    bool closest_hit(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         return traverse<false, false>(r, tmin, tmax, best);
     }
 
     /// Whether anything is hit in [tmin, tmax]; stops at the first hit found.
-    bool any(const ray& r, real tmin, real tmax) const
+    bool any_hit(const ray& r, real tmin, real tmax) const
     {
         primitive_hit unused;
         return traverse<true, false>(r, tmin, tmax, unused);
     }
 
-    /// closest() with the node and leaf tests done one value at a time (the
-    /// fallback where SSE is missing), for the tests to compare with closest().
-    bool closest_scalar(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    /// closest_hit() with the node and leaf tests done one value at a time (the
+    /// fallback where SSE is missing), for the tests to compare with closest_hit().
+    bool closest_hit_scalar(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         return traverse<false, true>(r, tmin, tmax, best);
     }
 
-    /// any() one value at a time, as closest_scalar.
-    bool any_scalar(const ray& r, real tmin, real tmax) const
+    /// any_hit() one value at a time, as closest_hit_scalar.
+    bool any_hit_scalar(const ray& r, real tmin, real tmax) const
     {
         primitive_hit unused;
         return traverse<true, true>(r, tmin, tmax, unused);
@@ -264,7 +264,7 @@ private:
             1024);
     }
 
-    template <bool any_hit, bool scalar>
+    template <bool stop_at_first, bool scalar>
     bool traverse(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         if (nodes_.empty())
@@ -284,7 +284,7 @@ private:
                 const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
                                         : detail::intersect_children(node, nr, tmin, closest_t, tnear);
                 if (mask != 0) { // one jump on the mask (descend.hpp)
-                    detail::descend<any_hit>(mask, node, tnear, stack, top, child, count);
+                    detail::descend<stop_at_first>(mask, node, tnear, stack, top, child, count);
                     continue;
                 }
             } else {
@@ -295,8 +295,8 @@ private:
                 for (std::uint32_t done = 0; done < count; done += 4, ++block) {
                     detail::block_hits hits;
                     int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
-                                      : detail::intersect_block<!any_hit>(*block, lr, wr, tmin, closest_t, hits);
-                    if (mask != 0 && any_hit)
+                                      : detail::intersect_block<!stop_at_first>(*block, lr, wr, tmin, closest_t, hits);
+                    if (mask != 0 && stop_at_first)
                         return true;
                     if (mask != 0) {
                         // the block's closest lane, then one decision against
@@ -330,7 +330,7 @@ private:
                         primitive_hit h;
                         if (detail::intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
                             best = h;
-                            if (any_hit)
+                            if (stop_at_first)
                                 return true;
                             found = true;
                             closest_t = h.t;

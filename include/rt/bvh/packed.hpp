@@ -9,7 +9,7 @@
 //
 //     const rt::packed_primitive p = rt::pack_triangle(a, b, c, 0);
 //     rt::primitive_hit hit;
-//     if (rt::closest_flat({p}, ray, 0, rt::infinity, hit)) { /* hit.t, hit.b0 ... */ }
+//     if (rt::closest_hit_flat({p}, ray, 0, rt::infinity, hit)) { /* hit.t, hit.b0 ... */ }
 #pragma once
 
 #include <cstdint>
@@ -135,7 +135,7 @@ inline bool intersect_packed(const packed_primitive& p, const ray& r, const wate
 
 /// The flat list over packed primitives: every primitive tested, the closest
 /// kept by replaces(). For scenes too small to pay for a BVH.
-inline bool closest_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax,
+inline bool closest_hit_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax,
                          primitive_hit& best)
 {
     const watertight_ray w = make_watertight_ray(r);
@@ -151,7 +151,7 @@ inline bool closest_flat(const std::vector<packed_primitive>& prims, const ray& 
 }
 
 /// Whether any packed primitive is hit in [tmin, tmax].
-inline bool any_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax)
+inline bool any_hit_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax)
 {
     const watertight_ray w = make_watertight_ray(r);
     primitive_hit h;
