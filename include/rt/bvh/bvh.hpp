@@ -339,7 +339,7 @@ private:
                 }
             }
             // the next entry on the stack that can still hold a hit at t <= closest_t
-            const real cut = closest_t * slab_far_factor;
+            const real cut = closest_t * slab_robust_far_factor;
             for (;;) {
                 if (top == 0)
                     return found;
