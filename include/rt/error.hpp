@@ -79,8 +79,8 @@ private:
 };
 
 /// The standard message: "file:line:col: expected X, found Y; hint".
-inline error parse_error(const source_location& where, const std::string& expected,
-                         const std::string& found, const std::string& hint = {})
+inline error make_error(const source_location& where, const std::string& expected,
+                        const std::string& found, const std::string& hint = {})
 {
     std::string message = "expected " + expected + ", found " + found;
     if (!hint.empty())

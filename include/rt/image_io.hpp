@@ -107,8 +107,8 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
     double scale = 0;
     if (!(in >> magic >> width >> height >> scale) || magic != "PF" || width <= 0 || height <= 0 ||
         scale == 0 || std::int64_t(width) * height > (std::int64_t(1) << 28))
-        throw parse_error(source_location{name, 1, 1}, "a colour PFM header 'PF width height scale'",
-                          "something else", "is this a PFM file written by rt?");
+        throw make_error(source_location{name, 1, 1}, "a colour PFM header 'PF width height scale'",
+                         "something else", "is this a PFM file written by rt?");
     in.get(); // the single whitespace byte after the scale
     const bool little = scale < 0;
     // Read the pixel bytes before allocating the image, in chunks, so that a

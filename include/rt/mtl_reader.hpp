@@ -67,8 +67,8 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
             return;
         }
         if (entries.empty())
-            throw parse_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
-                              "every material starts with newmtl");
+            throw make_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
+                             "every material starts with newmtl");
         mtl_entry& entry = entries.back();
         if (colour) {
             if (!line.done() && !line.number_follows())
@@ -82,8 +82,8 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
                 const source_location at = line.here();
                 const real value = line.number(keyword + " " + "rgb"[channel]);
                 if (value < 0)
-                    throw parse_error(at, "a non-negative " + keyword, std::to_string(value),
-                                      "colours cannot be negative");
+                    throw make_error(at, "a non-negative " + keyword, std::to_string(value),
+                                     "colours cannot be negative");
                 c[channel] = float(value);
             }
             if (keyword == "Ka") {
@@ -98,13 +98,13 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
             const source_location at = line.here();
             entry.value.p = line.number("the Phong exponent Ns");
             if (entry.value.p < 0)
-                throw parse_error(at, "a non-negative Ns", std::to_string(entry.value.p));
+                throw make_error(at, "a non-negative Ns", std::to_string(entry.value.p));
             entry.has_ns = true;
         } else {
             const source_location at = line.here();
             const real model = line.number("the illumination model");
             if (!(model >= 0 && model <= 10 && model == std::floor(model)))
-                throw parse_error(at, "an illumination model 0 to 10", std::to_string(model));
+                throw make_error(at, "an illumination model 0 to 10", std::to_string(model));
             entry.illum = int(model);
         }
         if (!line.done())

@@ -109,7 +109,7 @@ public:
     /// An error at the next unread token: "expected <expected>, found <that token>".
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : found_text(peek()), hint);
+        return make_error(here(), expected, done() ? "the end of the line" : found_text(peek()), hint);
     }
 
     std::string word(const std::string& what)
@@ -169,7 +169,7 @@ public:
         const source_location where = here();
         const vec3 v = vector(what);
         if (glm::dot(v, v) == real(0))
-            throw parse_error(where, "a non-zero " + what, "0 0 0", "a direction needs a length");
+            throw make_error(where, "a non-zero " + what, "0 0 0", "a direction needs a length");
         return v;
     }
 
@@ -181,7 +181,7 @@ public:
             const source_location where = here();
             const real value = number(what + " " + "rgb"[channel]);
             if (value < 0)
-                throw parse_error(where, "a non-negative " + what, detail::short_number(double(value)), "colours cannot be negative");
+                throw make_error(where, "a non-negative " + what, detail::short_number(double(value)), "colours cannot be negative");
             c[channel] = float(value);
         }
         return c;

@@ -225,8 +225,8 @@ public:
         commands_ = viewer::parse_script(set.script, set.script_name);
         for (const viewer::script_command& c : commands_)
             if (c.name == "key" && SDL_GetKeyFromName(c.arguments[0].c_str()) == SDLK_UNKNOWN)
-                throw rt::parse_error(c.where, "an SDL key name (\"5\", \"]\", \"s\", \"Escape\")",
-                                      stage::quoted(c.arguments[0]));
+                throw rt::make_error(c.where, "an SDL key name (\"5\", \"]\", \"s\", \"Escape\")",
+                                     stage::quoted(c.arguments[0]));
 
         window_.reset(SDL_CreateWindow("rt viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, view_.width,
                                        view_.height, SDL_WINDOW_SHOWN));
