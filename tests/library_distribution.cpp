@@ -165,7 +165,7 @@ TEST_CASE("the renderer's thin lens: a plane in focus comes out exactly as with 
         o.height = s.height;
         o.samples_per_pixel = 16;
         o.threads = 1;
-        return rt::render(o, rt::camera_rays(s.cam, s.width, s.height), rt::make_radiance(s, rt::aov_kind::none)).pixels;
+        return rt::render(o, rt::camera_rays(s.cam, s.width, s.height), rt::make_radiance(s, rt::aov_kind::shaded)).pixels;
     };
     const auto differing = [](const rt::image& a, const rt::image& b) {
         int count = 0;
@@ -215,7 +215,7 @@ TEST_CASE("the renderer's soft shadow: a pixel under a half-hidden square light 
     o.samples_per_pixel = 4096;
     o.threads = 1;
     const rt::image out =
-        rt::render(o, rt::camera_rays(s.cam, 1, 1), rt::make_radiance(s, rt::aov_kind::none)).pixels;
+        rt::render(o, rt::camera_rays(s.cam, 1, 1), rt::make_radiance(s, rt::aov_kind::shaded)).pixels;
     const double got = double(out.at(0, 0).r), sigma = std::sqrt((E2 - E * E) / o.samples_per_pixel);
     INFO("expected the pixel to average the half-visible light, " << E << " (5 sigma = " << 5 * sigma << "), found "
                                                                    << got << "; " << (got - E) / sigma << " sigma away");

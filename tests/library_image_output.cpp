@@ -309,7 +309,7 @@ TEST_CASE("AOVs are stored as data: no tone curve, and depth scaled by the image
     CHECK(normals.tonemap == rt::tonemap_kind::clamp);
     CHECK(normals.gamma == 1.0f);
     // and the shaded image keeps its own settings
-    CHECK(rt::output_encoding(rt::aov_kind::none, shaded, depth).tonemap == rt::tonemap_kind::aces);
+    CHECK(rt::output_encoding(rt::aov_kind::shaded, shaded, depth).tonemap == rt::tonemap_kind::aces);
 }
 
 TEST_CASE("atomic output: a write that fails half-way leaves the earlier file intact and nothing else")

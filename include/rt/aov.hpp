@@ -13,13 +13,13 @@
 
 namespace rt {
 
-/// What each sample computes: the shaded colour (none) or a debug image (an
+/// What each sample computes: the shaded colour (shaded) or a debug image (an
 /// "arbitrary output variable"): the hit's distance, its normal, its position,
 /// or the camera ray's direction.
-enum class aov_kind { none, depth, normal, position, rays };
+enum class aov_kind { shaded, depth, normal, position, rays };
 
-/// The names of the debug images; "shaded" (aov_kind::none) is not a debug image.
-inline constexpr detail::enum_name<aov_kind> aov_names[] = {{aov_kind::none, "shaded"},
+/// The names of the debug images; "shaded" is not a debug image.
+inline constexpr detail::enum_name<aov_kind> aov_names[] = {{aov_kind::shaded, "shaded"},
                                                             {aov_kind::depth, "depth"},
                                                             {aov_kind::normal, "normal"},
                                                             {aov_kind::position, "position"},
@@ -29,10 +29,10 @@ inline constexpr detail::enum_name<aov_kind> aov_names[] = {{aov_kind::none, "sh
 inline std::optional<aov_kind> aov_from_name(const std::string& name)
 {
     const std::optional<aov_kind> kind = detail::value_named(aov_names, name);
-    return kind == aov_kind::none ? std::nullopt : kind;
+    return kind == aov_kind::shaded ? std::nullopt : kind;
 }
 
-/// "shaded" for aov_kind::none, otherwise the name aov_from_name reads.
+/// "shaded" for aov_kind::shaded, otherwise the name aov_from_name reads.
 inline const char* name_of(aov_kind kind) { return detail::name_in(aov_names, kind); }
 
 } // namespace rt

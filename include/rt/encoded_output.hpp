@@ -62,7 +62,7 @@ inline void save_image(const std::filesystem::path& path, const image& img, cons
 /// image's own farthest hit: 0 (black) at the eye, 255 at the farthest point.
 inline encoding output_encoding(aov_kind aov, const encoding& shaded, const image& pixels)
 {
-    if (aov == aov_kind::none)
+    if (aov == aov_kind::shaded)
         return shaded;
     encoding data{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
     if (aov == aov_kind::depth) {

@@ -2,7 +2,7 @@
 // camera's rays, and the colour each ray brings back (the shaded colour of
 // stages 05-07, 09 and 10, or a debug image, aov.hpp).
 //
-//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
+//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::shaded); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
 #pragma once
@@ -116,7 +116,7 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
             hit_record hit;
             return accel->closest_hit(r, 0, unbounded, hit) ? color(hit.point) : color(0.0f);
         };
-    case aov_kind::none: break;
+    case aov_kind::shaded: break;
     }
     const scene* shaded = &s;
     // stage 07's ray colour, or stage 09's where the scene has glass or a glossy

@@ -143,13 +143,13 @@ int main(int argc, char** argv)
             throw rt::error(render.input.empty()
                                 ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
                                 : "expected a scene file or --pattern, found both; see --help");
-        if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::none)
+        if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::shaded)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
         if (set.pattern != pattern_kind::none && render.camera)
             throw rt::error("expected --camera or --pattern, found both; a pattern has no camera");
         if (set.pixel.wanted && set.pattern != pattern_kind::none)
             throw rt::error("expected --pixel or --pattern, found both; a pattern has no rays to tell of");
-        if (set.pixel.wanted && render.aov != rt::aov_kind::none)
+        if (set.pixel.wanted && render.aov != rt::aov_kind::shaded)
             throw rt::error("expected --pixel or --aov, found both; the story is the shaded image's");
         if (!set.pixel.wanted) {
             rt::check_image_output(stage::file_argument(set.output)); // fail before the work, not after it

@@ -73,7 +73,7 @@ int main(int argc, char** argv)
         options.samples_per_pixel = spp > 0 ? spp : s.samples;
         options.sampler = rt::sampler_kind::jittered;
         options.seed = seed;
-        const rt::render_result out = stage::render_scene(s, rt::aov_kind::none, options, {});
+        const rt::render_result out = stage::render_scene(s, rt::aov_kind::shaded, options, {});
         stage::save_image(output, out.pixels, 2.2f);
         const int samples = rt::effective_samples(options.sampler, options.samples_per_pixel);
         std::cerr << "stage10_distribution: wrote " << output << " (" << s.width << "x" << s.height << ", " << samples

@@ -56,7 +56,7 @@ struct render_settings {
     int threads = 0;
     rt::encoding encoding;
     std::uint64_t seed = 0;
-    rt::aov_kind aov = rt::aov_kind::none;
+    rt::aov_kind aov = rt::aov_kind::shaded;
     std::optional<rt::camera> camera;
     bool strict = false; ///< --strict: warnings of OBJ files are errors
 };

@@ -5,8 +5,8 @@
 // stage-08 exercises (encoding.hpp), so an edit to a tone map rebuilds it and
 // stage 08's own files, never the renderer or the BVH.
 //
-//     const rt::render_result out = stage::render_scene(scene, rt::aov_kind::none, options, bar.callback());
-//     stage::save_encoded("out.png", out.pixels, rt::aov_kind::none, rt::encoding{});
+//     const rt::render_result out = stage::render_scene(scene, rt::aov_kind::shaded, options, bar.callback());
+//     stage::save_encoded("out.png", out.pixels, rt::aov_kind::shaded, rt::encoding{});
 #pragma once
 
 #include <functional>

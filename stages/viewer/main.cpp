@@ -173,7 +173,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                   "--filter-radius", rt::exact_number_text(v.reconstruction.radius),
                                   "--max-depth", std::to_string(v.max_depth),
                                   "--seed", std::to_string(v.seed)};
-    if (v.aov != rt::aov_kind::none) {
+    if (v.aov != rt::aov_kind::shaded) {
         a.insert(a.end(), {"--aov", rt::name_of(v.aov)});
     } else {
         a.insert(a.end(), {"--tonemap", rt::name_of(enc.tonemap), "--exposure", number(double(enc.exposure))});
@@ -346,7 +346,7 @@ private:
     void key(SDL_Keycode sym)
     {
         switch (sym) {
-        case SDLK_1: set_aov(rt::aov_kind::none); break;
+        case SDLK_1: set_aov(rt::aov_kind::shaded); break;
         case SDLK_2: set_aov(rt::aov_kind::normal); break;
         case SDLK_3: set_aov(rt::aov_kind::depth); break;
         case SDLK_4: set_aov(rt::aov_kind::position); break;
@@ -541,7 +541,7 @@ private:
         const std::optional<viewer::completed_image> done = progressive_->completed();
         stage::add_encoding_story(st, encoding_,
                                   done ? done->pass.samples_per_pixel : view_.samples_per_pixel);
-        if (view_.aov != rt::aov_kind::none)
+        if (view_.aov != rt::aov_kind::shaded)
             say("the story is the shaded image's (key 1), whatever the view shows");
         stage::print_story(std::cerr, st, s);
         story_ = std::move(st);
