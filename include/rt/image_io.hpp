@@ -6,7 +6,8 @@
 //    quantise to 8 bits. It needs nothing from stage 08, so stage programs 02-07
 //    can save images before the student has written the colour pipeline.
 //  - the colour pipeline of stage 08 (encoded_output.hpp and encoding.hpp: exposure, tone map, sRGB or
-//    gamma, quantisation), selected by passing an rt::encoding.
+//    gamma, quantisation): write_ppm_encoded, image_file_encoded and
+//    save_image_encoded, which take an rt::encoding.
 // PFM keeps the linear floats exactly (no exposure, no tone map), for depth and
 // normal buffers, for comparisons and for merging. Every writer goes through
 // write_atomically (atomic_file.hpp).
@@ -204,7 +205,7 @@ inline output_file image_file(const std::filesystem::path& path, const image& im
 
 /// Writes the image to `path`, atomically, in the format its extension names:
 /// .png and .ppm (8-bit: clamped, plain gamma, see to_byte) or .pfm (linear floats).
-/// This is the early stages' writer; stage 08 passes an rt::encoding (encoded_output.hpp).
+/// This is the early stages' writer; stage 08's is save_image_encoded (encoded_output.hpp).
 inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
 {
     const output_file file = image_file(path, img, gamma);

@@ -14,7 +14,7 @@
 //     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::shaded); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
-//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::shaded, rt::encoding{}, out.pixels));
+//     rt::save_image_encoded("out.png", out.pixels, rt::output_encoding(rt::aov_kind::shaded, rt::encoding{}, out.pixels));
 #pragma once
 
 #include "aov.hpp"

@@ -47,7 +47,7 @@ rt::render_result render_scene(const rt::scene& s, rt::aov_kind aov, const rt::r
 /// terms worked out; stage 08 adds what its pipeline makes of it.
 story shaded_story(const rt::scene& s, const std::string& program, int column, int row, int nx, int ny);
 
-/// rt::save_image through the colour pipeline: `enc` for the shaded image,
+/// rt::save_image_encoded through the colour pipeline: `enc` for the shaded image,
 /// rt::output_encoding's data encoding for a debug image of kind `aov`.
 void save_encoded(const std::string& path, const rt::image& img, rt::aov_kind aov, const rt::encoding& enc);
 

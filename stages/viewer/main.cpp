@@ -621,7 +621,7 @@ private:
     void save(const viewer::completed_image& done, const std::string& path, bool tell)
     {
         const rt::encoding enc = rt::output_encoding(done.settings.aov, encoding_, done.pixels);
-        rt::save_image(stage::file_argument(path), done.pixels, enc);
+        rt::save_image_encoded(stage::file_argument(path), done.pixels, enc);
         if (tell)
             std::cerr << "viewer: wrote " << path << " (" << done.pass.samples_per_pixel
                       << " spp); the same image: "
