@@ -1,5 +1,6 @@
 // rt.hpp - the whole library in one include: every header that declares
 // public names (bvh.hpp stands for the bvh/ folder), and nothing else.
+// tests/check_public_names.py holds this list to the headers.
 #pragma once
 
 #include "aabb.hpp"
