@@ -307,7 +307,7 @@ private:
     }
 
     // inlined with closest_hit: a call kept the record's inputs and outputs in
-    // memory (closest hits 1-3% faster inlined)
+    // memory
     RT_BVH_INLINE void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
     {
         const primitive_ref ref = reference(h.id);

@@ -38,8 +38,8 @@ struct obj_limits {
     std::size_t max_triangles = std::size_t(1) << 26;  ///< 67 million
     std::uintmax_t max_bytes = std::uintmax_t(1) << 32; ///< 4 GiB of OBJ text
     /// corners of one face: tinyobjloader's ear clipping takes time in the
-    /// square of them (measured: 7 ms for 1000, 0.14 s for 4000, so a
-    /// one-line face of a million corners would take hours)
+    /// square of them, so a one-line face of a million corners would take
+    /// hours (docs/architecture.md, "Figures behind the comments")
     std::size_t max_face_corners = 1024;
     /// The largest coordinate magnitude a vertex may have: the intersection
     /// tests multiply coordinate differences (up to 2e18 here), and the
