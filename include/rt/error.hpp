@@ -22,6 +22,7 @@ struct source_location {
 };
 
 namespace detail {
+
 /// A file name as a message shows it: control characters become '?', and a
 /// path longer than 160 bytes keeps its last 160 or fewer (the file name is at
 /// the end; the cut falls between UTF-8 characters), so that a message stays one
@@ -38,6 +39,7 @@ inline std::string shown_path(const std::string& path)
             c = '?';
     return shown;
 }
+
 } // namespace detail
 
 /// "file:line:col" (or "file:line", or "file"), the prefix of every message.
@@ -53,6 +55,7 @@ inline std::string to_string(const source_location& where)
 }
 
 namespace detail {
+
 /// Text from an input (a name, a path) made safe to print in a one-line
 /// message: bytes that are not printable ASCII become '?', and anything past
 /// `limit` characters is cut with "...".
@@ -63,6 +66,7 @@ inline std::string printable(const std::string& text, std::size_t limit = 200)
         shown += (c >= 32 && c < 127) ? c : '?';
     return text.size() > limit ? shown + "..." : shown;
 }
+
 } // namespace detail
 
 /// A bad input or a failed operation: the message is one line, ready to print.

@@ -18,6 +18,7 @@
 namespace rt {
 
 namespace detail {
+
 /// The nine corner coordinates of triangle i (a.x a.y a.z b.x ... c.z), as
 /// intersect_watertight takes them.
 inline void triangle_corners(const mesh& m, std::size_t i, real v[9])
@@ -45,6 +46,7 @@ inline bool hit_mesh_triangle(const mesh& m, std::size_t i, const ray& r, real t
     complete_mesh_hit(m, i, rec);
     return true;
 }
+
 } // namespace detail
 
 /// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in

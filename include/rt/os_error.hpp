@@ -19,6 +19,7 @@
 namespace rt {
 
 namespace detail {
+
 /// What errno `code` means for a file, as the end of a message ("permission denied").
 inline std::string reason_of(int code)
 {
@@ -60,6 +61,7 @@ inline std::size_t name_max(const std::filesystem::path& folder)
 {
     return detail::longest_name(folder);
 }
+
 } // namespace detail
 
 /// Throws rt::error with the reason unless `path` can be opened for reading.
@@ -110,6 +112,7 @@ inline std::uint64_t memory_limit()
 }
 
 namespace detail {
+
 /// The process's memory in use now, in bytes, or 0 where it cannot be read:
 /// on Linux its address space (the first field of /proc/self/statm, proc(5)),
 /// on Windows its commit charge (platform.hpp says why).
@@ -123,6 +126,7 @@ inline std::string mebibytes(std::uint64_t bytes)
 {
     return std::to_string((bytes + (std::uint64_t(1) << 20) - 1) >> 20) + " MiB";
 }
+
 } // namespace detail
 
 /// Throws rt::error, before any work, when `bytes` more (what `what` will

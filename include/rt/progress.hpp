@@ -22,6 +22,7 @@
 namespace rt {
 
 namespace detail {
+
 /// True when stderr is a terminal (where a progress bar can redraw itself).
 inline bool stderr_is_terminal()
 {
@@ -79,6 +80,7 @@ inline std::string progress_line(const render_progress& p, int bar_width = 24)
         out << "  " << format_count(double(p.rays) / p.seconds) << "rays/s";
     return out.str();
 }
+
 } // namespace detail
 
 /// "rendered 640x360 at 16 spp on 2 threads: 3.69 Mrays in 2.31 s (1.60 Mrays/s)"

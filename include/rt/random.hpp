@@ -26,6 +26,7 @@
 namespace rt {
 
 namespace detail {
+
 /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every input bit into every output bit.
 inline std::uint64_t mix64(std::uint64_t z)
 {
@@ -33,6 +34,7 @@ inline std::uint64_t mix64(std::uint64_t z)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     return z ^ (z >> 31);
 }
+
 } // namespace detail
 
 /// PCG32 (O'Neill 2014): 64 bits of state, 32-bit outputs, period 2^64 on each of 2^63 streams.

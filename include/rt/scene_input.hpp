@@ -40,6 +40,7 @@ inline bool has_obj_extension(const std::filesystem::path& path)
 }
 
 namespace detail {
+
 /// Where a bare model is seen from inside: the direction to look in from `p`
 /// when `p` is enclosed by the model's inner faces, as in a room or a building
 /// (the conference room, Sponza's atrium, open to the sky), or nothing for an
@@ -84,6 +85,7 @@ inline std::optional<vec3> inside_view(const mesh& m, const vec3& p)
     }
     return view;
 }
+
 } // namespace detail
 
 /// A scene for a bare OBJ model: the model with its own materials (the

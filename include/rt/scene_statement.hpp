@@ -32,6 +32,7 @@
 namespace rt {
 
 namespace detail {
+
 /// The length of the shortest edit from a to b (Levenshtein), for "did you mean".
 inline std::size_t edit_distance(const std::string& a, const std::string& b)
 {
@@ -49,6 +50,7 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b)
     }
     return row[b.size()];
 }
+
 } // namespace detail
 
 /// Shortens what a file contained for an error message, so a message never

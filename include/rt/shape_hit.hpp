@@ -27,6 +27,7 @@
 namespace rt {
 
 namespace detail {
+
 /// The hit point and normal of a sphere hit that hit_sphere found on ray r,
 /// computed again relative to the centre. The point p + t d itself is no
 /// good for the normal when the ray comes from far away: its rounding error,
@@ -80,6 +81,7 @@ inline void refine_sphere_hit(const sphere& s, const ray& r, hit_record& rec)
     rec.geometric_normal = rec.front_face ? outward : -outward;
     rec.normal = rec.geometric_normal;
 }
+
 } // namespace detail
 
 /// The closest hit of one shape in [tmin, tmax], by the library's robust

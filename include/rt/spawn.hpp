@@ -50,6 +50,7 @@
 namespace rt {
 
 namespace detail {
+
 /// PBR 3rd ed., sec. 3.9.5: the point p moved past its error box p +- p_error
 /// along the unit normal n, to the side of the direction w.
 inline vec3 offset_past_error_bounds(const vec3& p, const vec3& p_error, const vec3& n, const vec3& w)
@@ -67,6 +68,7 @@ inline vec3 offset_past_error_bounds(const vec3& p, const vec3& p_error, const v
     }
     return moved;
 }
+
 } // namespace detail
 
 /// Where a shadow segment towards a point stops: t < 1 - shadow_epsilon, so a

@@ -101,6 +101,7 @@ inline bool replaces(const primitive_hit& candidate, const primitive_hit& best)
 }
 
 namespace detail {
+
 /// Intersects one packed primitive with the library's default methods: the
 /// watertight triangle test and rt::hit_sphere.
 inline bool intersect_packed(const packed_primitive& p, const ray& r, const watertight_ray& w, real tmin, real tmax,
@@ -131,6 +132,7 @@ inline bool intersect_packed(const packed_primitive& p, const ray& r, const wate
     hit.stride = 1;
     return true;
 }
+
 } // namespace detail
 
 /// The flat list over packed primitives: every primitive tested, the closest
