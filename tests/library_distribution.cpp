@@ -188,7 +188,7 @@ TEST_CASE("the renderer's soft shadow: a pixel under a half-hidden square light 
     // 2e-3 around it), white (kd 1, no ambient), under the square light
     // [-1, 1] x [-1, 1] at height 4 (intensity 1, no falloff); a large
     // triangle at height 2 hides every light point with x < 0. One sample's
-    // colour is kd I max(0, n.l) for its random light point when that point is
+    // color is kd I max(0, n.l) for its random light point when that point is
     // visible, so the pixel's mean over N samples tends to
     //     E = (1 / area) integral over the light of [x > 0] 4 / |y - p| dA,
     // computed here by the midpoint rule, and its standard deviation is

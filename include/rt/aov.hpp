@@ -1,4 +1,4 @@
-// aov.hpp - what a render computes at each sample: the shaded colour, or a
+// aov.hpp - what a render computes at each sample: the shaded color, or a
 // debug image of the hits (an "arbitrary output variable": depth, normal,
 // position, or the camera ray's direction). How each is stored:
 // encoded_output.hpp (output_encoding).
@@ -13,7 +13,7 @@
 
 namespace rt {
 
-/// What each sample computes: the shaded colour (shaded) or a debug image (an
+/// What each sample computes: the shaded color (shaded) or a debug image (an
 /// "arbitrary output variable"): the hit's distance, its normal, its position,
 /// or the camera ray's direction.
 enum class aov_kind { shaded, depth, normal, position, rays };

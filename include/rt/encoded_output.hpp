@@ -1,4 +1,4 @@
-// encoded_output.hpp - images written through stage 08's colour pipeline
+// encoded_output.hpp - images written through stage 08's color pipeline
 // (encoding.hpp: exposure, tone map, transfer function, quantisation), in the
 // formats of image_io.hpp, and the pipeline each kind of render is stored with.
 // The early stages' plain path (clamp, plain gamma) keeps the names without
@@ -25,7 +25,7 @@
 
 namespace rt {
 
-/// Binary PPM of the image through the colour pipeline (encoding.hpp). The
+/// Binary PPM of the image through the color pipeline (encoding.hpp). The
 /// file is written by stage 02's write_ppm (image_io.hpp), the one PPM writer:
 /// it is given the pipeline's bytes b as the levels b / 255 with gamma 1, and
 /// stores each as quantize(b / 255) = b again (the level is a byte level, so
@@ -49,7 +49,7 @@ inline output_file image_file_encoded(const std::filesystem::path& path, const i
         [pixels, enc] { return encode_image(*pixels, enc); });
 }
 
-/// Writes the image to `path`, atomically: .png and .ppm through the colour
+/// Writes the image to `path`, atomically: .png and .ppm through the color
 /// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
 inline void save_image_encoded(const std::filesystem::path& path, const image& img, const encoding& enc)
 {

@@ -1,4 +1,4 @@
-// encoding_settings.hpp - the settings of stage 08's colour pipeline: the
+// encoding_settings.hpp - the settings of stage 08's color pipeline: the
 // exposure, which tone map, which transfer curve (sRGB or a plain gamma).
 //
 // Only the names and the settings, none of the curves (tonemap.hpp,
@@ -35,9 +35,9 @@ inline const char* name_of(tonemap_kind kind) { return detail::name_in(tonemap_n
 /// The curve from a tone-mapped value in [0, 1] to the value stored.
 enum class transfer_kind { srgb, gamma };
 
-/// How linear colours become bytes: the settings of the whole pipeline.
+/// How linear colors become bytes: the settings of the whole pipeline.
 struct encoding {
-    float exposure = 0.0f;                       ///< stops: colours are scaled by 2^exposure
+    float exposure = 0.0f;                       ///< stops: colors are scaled by 2^exposure
     tonemap_kind tonemap = tonemap_kind::clamp;  ///< the curve from [0, inf) to [0, 1]
     transfer_kind transfer = transfer_kind::srgb;
     float gamma = 2.2f;                          ///< used when transfer == gamma

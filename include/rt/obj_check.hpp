@@ -146,7 +146,7 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 }
             }
             while (!line.done())
-                line.number("a vertex's extra value (w or colour)");
+                line.number("a vertex's extra value (w or color)");
             out.positions.push_back(p);
         } else if (keyword == "vn") {
             line.number("the normal x");

@@ -1,9 +1,9 @@
 // render_setup.hpp - everything the render commands share between the command
 // line and rt::render, in one include: scene_input.hpp (a scene file or a bare
 // OBJ), aov.hpp (what each sample computes and how it is stored), radiance.hpp
-// (the camera's rays and their colour), camera_text.hpp and
+// (the camera's rays and their color), camera_text.hpp and
 // camera_statement.hpp (the camera as text, both ways), encoded_output.hpp
-// (images through the colour pipeline). Include the one you
+// (images through the color pipeline). Include the one you
 // use: this umbrella pulls in both loaders and the renderer.
 //
 // stage08_output and the interactive viewer (stages/viewer) both build their

@@ -7,7 +7,7 @@
 //
 // The renderer knows nothing of scenes: it asks the ray source for the ray
 // through the film position (x, y) (pixels from the image's bottom-left corner,
-// as rt::generate_ray takes them) and the radiance function for the colour
+// as rt::generate_ray takes them) and the radiance function for the color
 // that ray brings back. Both are called from several threads at once, so they
 // must not modify shared state (read-only scene data is fine).
 //

@@ -137,7 +137,7 @@ private:
         else if (keyword == "ambient")
             result_.ambient = line.rgb("ambient intensity");
         else if (keyword == "background")
-            result_.background = line.rgb("background colour");
+            result_.background = line.rgb("background color");
         else if (keyword == "samples")
             result_.samples = line.integer("samples per pixel", 1, options_.max_samples,
                                            "the limit is load_options::max_samples; raise it if you mean it");

@@ -175,7 +175,7 @@ public:
         return v;
     }
 
-    /// An RGB colour with non-negative components.
+    /// An RGB color with non-negative components.
     color rgb(const std::string& what)
     {
         color c;
@@ -183,7 +183,7 @@ public:
             const source_location where = here();
             const real value = number(what + " " + "rgb"[channel]);
             if (value < 0)
-                throw make_error(where, "a non-negative " + what, detail::short_number(double(value)), "colours cannot be negative");
+                throw make_error(where, "a non-negative " + what, detail::short_number(double(value)), "colors cannot be negative");
             c[channel] = float(value);
         }
         return c;

@@ -5,7 +5,7 @@
 //
 //     stage10_distribution scenes/soft.scene -o soft.png [--spp N] [--pixel I J]
 //
-// The image is rt::render's (stage 08) of rt::make_radiance's colour, compiled
+// The image is rt::render's (stage 08) of rt::make_radiance's color, compiled
 // once in stages/common/support_frame.cpp: that file includes this stage's
 // headers, so an edit to them rebuilds it and this program only.
 #include <cstdint>

@@ -32,7 +32,7 @@ struct pixel_request {
 /// The help lines every program from stage 03 on prints for --pixel.
 inline const char* pixel_help =
     "  --pixel I J      tell the story of one pixel instead of writing images: its camera\n"
-    "                   ray, every hit, light and shadow ray, and its colour; I is the\n"
+    "                   ray, every hit, light and shadow ray, and its color; I is the\n"
     "                   column from the left, J the row from the top (as image viewers count)\n"
     "  --pixel-json I J the same as JSON (infinities are null)\n";
 

@@ -461,7 +461,7 @@ private:
             rt::name_of(encoding_.tonemap));
     }
 
-    /// Bytes and texture of rows [y0, y1) of the shown image, through the colour pipeline.
+    /// Bytes and texture of rows [y0, y1) of the shown image, through the color pipeline.
     void encode_rows(int y0, int y1)
     {
         const rt::encoding enc = display_encoding();
@@ -558,7 +558,7 @@ private:
         const double w = double(view_.width), h = double(view_.height);
         for (const viewer::overlay_segment& seg : viewer::story_segments(*story_, gen, reach_)) {
             const auto seen = viewer::clip(seg.a, seg.b, -1, -1, w + 1, h + 1);
-            const std::array<std::uint8_t, 3> rgb = overlay_colour(seg.what);
+            const std::array<std::uint8_t, 3> rgb = overlay_color(seg.what);
             SDL_SetRenderDrawColor(renderer_.get(), rgb[0], rgb[1], rgb[2], 255);
             if (seen)
                 SDL_RenderDrawLineF(renderer_.get(), float(seen->first.x), float(seen->first.y),
@@ -571,7 +571,7 @@ private:
         SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
     }
 
-    static std::array<std::uint8_t, 3> overlay_colour(viewer::ray_kind k)
+    static std::array<std::uint8_t, 3> overlay_color(viewer::ray_kind k)
     {
         switch (k) {
         case viewer::ray_kind::camera: return {255, 255, 255};

@@ -13,7 +13,7 @@
 // Every full-resolution level is the image stage08_output writes for the same
 // settings and that sample count, bit for bit: a band is an rt::render of a
 // crop, and a crop holds exactly the full render's pixels (renderer.hpp).
-// Nothing here computes a colour: the radiance function comes from
+// Nothing here computes a color: the radiance function comes from
 // rt::make_radiance (render_setup.hpp), as in stage08_output.
 //
 // Restarting: start() bumps a generation counter. The radiance function is
