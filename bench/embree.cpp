@@ -260,7 +260,7 @@ int main(int argc, char** argv)
                                     " primary rays; shadow rays from their hits; " +
                                     std::to_string(incoherent_count) + " incoherent rays");
 #if !defined(RT_BENCH_HAS_ACCELERATOR)
-            table->note("rt", "rt::accelerator (include/rt/intersect.hpp) not present in this tree: rt columns are nan");
+            table->note("rt", "rt::accelerator (include/rt/accelerator.hpp) not present in this tree: rt columns are nan");
 #endif
         }
 

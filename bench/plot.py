@@ -45,10 +45,10 @@ def save(fig, charts, name):
     print("wrote", path)
 
 
-SAMPLER_COLOURS = {"center": "0.4", "grid": "tab:purple", "random": "tab:red", "jittered": "tab:blue",
+SAMPLER_COLORS = {"center": "0.4", "grid": "tab:purple", "random": "tab:red", "jittered": "tab:blue",
                    "halton": "tab:green"}
 # the stage-02 exercises (jittered samples, box), box filter only: drawn on the sampling charts, not the headline
-STUDENT_COLOUR = {"student": "tab:cyan"}
+STUDENT_COLOR = {"student": "tab:cyan"}
 
 
 def plot_sampling(data, charts):
@@ -72,7 +72,7 @@ def plot_sampling(data, charts):
             fig, axes = plt.subplots(2, 2, figsize=(10, 8), sharex=True, sharey=True)
             flat = list(axes.flat)
         for ax, filt in zip(flat, filters):
-            for sampler, colour in {**SAMPLER_COLOURS, **STUDENT_COLOUR}.items():
+            for sampler, color in {**SAMPLER_COLORS, **STUDENT_COLOR}.items():
                 pts = [(num(r["seconds"]), num(r["rmse"]), int(r["spp"])) for r in rows
                        if r["scene"] == scene and r["filter"] == filt and r["sampler"] == sampler]
                 if not pts:
@@ -80,11 +80,11 @@ def plot_sampling(data, charts):
                 label = sampler
                 if (scene, sampler, filt) in slopes:
                     label += " (slope %.2f)" % slopes[(scene, sampler, filt)]
-                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", color=colour, label=label, ms=4)
+                ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", color=color, label=label, ms=4)
                 for s, e, spp in pts:
                     if sampler == "jittered":
                         ax.annotate(str(spp), (s, e), textcoords="offset points", xytext=(3, 3), fontsize=6,
-                                    color=colour)
+                                    color=color)
             ax.set_title("%s filter" % filt)
             ax.grid(True, which="both", alpha=0.3)
             ax.legend(fontsize=7)
@@ -120,22 +120,22 @@ def plot_sphere(data, charts):
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.6))
     styles = {("float", "textbook"): ("tab:red", "o--"), ("float", "stable"): ("tab:blue", "o-"),
               ("double", "textbook"): ("tab:orange", "s--"), ("double", "stable"): ("tab:green", "s-")}
-    for (precision, method), (colour, style) in styles.items():
+    for (precision, method), (color, style) in styles.items():
         pts = [r for r in rows if r["precision"] == precision and r["method"] == method]
         if not pts:
             continue
         d = [num(r["distance"]) for r in pts]
         label = "%s %s" % (method, precision)
         tiny = 1e-9  # zero on a log axis
-        axes[0].loglog(d, [max(num(r["misclassified_fraction"]), tiny) for r in pts], style, color=colour,
+        axes[0].loglog(d, [max(num(r["misclassified_fraction"]), tiny) for r in pts], style, color=color,
                        label=label)
-        axes[1].loglog(d, [max(num(r["depth_error_median"]), 1e-18) for r in pts], style, color=colour, label=label)
+        axes[1].loglog(d, [max(num(r["depth_error_median"]), 1e-18) for r in pts], style, color=color, label=label)
         err = [max(num(r["depth_error_median"]), 1e-18) for r in pts]
         speed = [num(r["mrays_per_s"]) for r in pts]
-        axes[2].semilogx(err, speed, style, color=colour, label=label)
+        axes[2].semilogx(err, speed, style, color=color, label=label)
         for e, s, dist in zip(err, speed, d):
             axes[2].annotate("1e%d" % round(math.log10(dist)), (e, s), textcoords="offset points", xytext=(2, 3),
-                             fontsize=6, color=colour)
+                             fontsize=6, color=color)
     axes[0].set_title("rays answered hit/miss wrongly")
     axes[0].set_ylabel("fraction (1e-9 = none)")
     axes[1].set_title("median depth error |t - t_ref| / R")
@@ -163,11 +163,11 @@ def plot_triangle(data, charts):
     if os.path.exists(contract):
         rows += [r for r in read(contract)[1] if r["method"].startswith("watertight")]
     sets = {"surface": "o", "edges": "s", "vertices": "D"}
-    colours = {"moller_trumbore": "tab:red", "watertight": "tab:blue", "watertight_per_ray": "tab:green",
+    colors = {"moller_trumbore": "tab:red", "watertight": "tab:blue", "watertight_per_ray": "tab:green",
                "watertight+fma": "tab:orange", "watertight_per_ray+fma": "gold"}
     none = 3e-6  # where "no leak at all" is drawn on the log axis
     fig, ax = plt.subplots(figsize=(9, 5.5))
-    for method, colour in colours.items():
+    for method, color in colors.items():
         for ray_set, marker in sets.items():
             pts = [r for r in rows if r["rays"] == ray_set and r["method"] == method]
             if not pts:
@@ -176,7 +176,7 @@ def plot_triangle(data, charts):
             leaks = sum(num(r["leaks"]) for r in pts) / sum(num(r["ray_count"]) for r in pts)
             tests = sum(num(r["ray_count"]) * num(r["triangles"]) for r in pts)
             speed = tests / sum(num(r["seconds"]) for r in pts) / 1e6
-            ax.semilogx([max(leaks, none)], [speed], marker, color=colour, ms=8, mec="k", mew=0.5,
+            ax.semilogx([max(leaks, none)], [speed], marker, color=color, ms=8, mec="k", mew=0.5,
                         label="%s, %s" % (method.replace("_", " "), ray_set))
     ax.axvline(none * 1.7, color="0.6", lw=0.8, ls=":")
     ax.set_xlim(none / 2, 1)
@@ -200,11 +200,11 @@ def plot_groups(data, charts):
         return print("groups: no", path)
     notes, rows = read(path)
     fig, ax = plt.subplots(figsize=(8, 5.2))
-    for kind, colour in (("flat", "tab:red"), ("bvh", "tab:blue"), ("automatic", "tab:green")):
+    for kind, color in (("flat", "tab:red"), ("bvh", "tab:blue"), ("automatic", "tab:green")):
         pts = sorted((num(r["primitives"]), num(r["ns_per_ray"])) for r in rows if r["kind"] == kind)
         if pts:
             ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-" if kind != "automatic" else "x:",
-                      color=colour, label=kind)
+                      color=color, label=kind)
     crossover = num(notes.get("measured crossover", "nan").split()[0]) if "measured crossover" in notes else math.nan
     if not math.isnan(crossover):
         ax.axvline(crossover, color="0.3", ls="--", lw=1)
@@ -229,10 +229,10 @@ def plot_acne(data, charts):
     notes, rows = read(path)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
     # robust_offset: the name of the Ray Tracing Gems row in CSV files from before issue 19
-    colours = {"no_offset": "0.5", "fixed_epsilon": "tab:red", "rtg_offset": "tab:blue", "robust_offset": "tab:blue",
+    colors = {"no_offset": "0.5", "fixed_epsilon": "tab:red", "rtg_offset": "tab:blue", "robust_offset": "tab:blue",
                "error_bounds": "tab:green", "light_visible": "tab:purple"}
     styles = {"light_visible": "s--"}
-    for method, colour in colours.items():
+    for method, color in colors.items():
         pts = sorted((num(r["scale"]), num(r["acne_fraction"]), num(r["leak_fraction"])) for r in rows
                      if r["method"] == method)
         if not pts:
@@ -243,8 +243,8 @@ def plot_acne(data, charts):
                  "error_bounds": "PBR error bounds (spawn_ray)",
                  "light_visible": "light_visible (spawn_ray_to)"}.get(method, method)
         style = styles.get(method, "o-")
-        axes[0].loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], style, color=colour, label=label)
-        axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], style, color=colour, label=label)
+        axes[0].loglog([p[0] for p in pts], [max(p[1], 1e-6) for p in pts], style, color=color, label=label)
+        axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], style, color=color, label=label)
     axes[0].set_title("acne: lit points wrongly in shadow")
     axes[1].set_title("leaks: shadowed points wrongly lit")
     for ax in axes:
@@ -266,7 +266,7 @@ def plot_embree(data, charts):
     one = [r for r in rows if r["threads"] == "1"]
     meshes = list(dict.fromkeys(r["mesh"] for r in one))
     sets = ["outside", "centre", "shadow", "shadow-surface", "incoherent"]
-    colours = {"outside": "tab:blue", "centre": "tab:orange", "shadow": "tab:gray", "shadow-surface": "tab:olive",
+    colors = {"outside": "tab:blue", "centre": "tab:orange", "shadow": "tab:gray", "shadow-surface": "tab:olive",
                "incoherent": "tab:red"}
     builds, against_high = {}, {}
     build_path = os.path.join(data, "embree_build.csv")
@@ -283,7 +283,7 @@ def plot_embree(data, charts):
         for m in meshes:
             match = [r for r in one if r["mesh"] == m and r["set"] == s]
             values.append(num(match[0]["ratio_rt_over_embree"]) if match else math.nan)
-        axes[0].bar([i + (k - 1.5) * width for i in range(len(meshes))], values, width, color=colours[s], label=s)
+        axes[0].bar([i + (k - 1.5) * width for i in range(len(meshes))], values, width, color=colors[s], label=s)
     axes[0].axhline(1.0, color="k", ls="--", lw=1)
     axes[0].annotate("target 1.0", (len(meshes) - 0.6, 1.02), fontsize=7)
     axes[0].set_xticks(range(len(meshes)))
@@ -360,22 +360,22 @@ def plot_headline(data, charts):
     fig, axes = plt.subplots(1, panels, figsize=(5 * panels, 4.4))
     # sampling: edges scene, box filter
     _, rows = read(samp_path)
-    for sampler, colour in SAMPLER_COLOURS.items():
+    for sampler, color in SAMPLER_COLORS.items():
         pts = [(num(r["seconds"]), num(r["rmse"])) for r in rows
                if r["scene"] == "edges" and r["filter"] == "box" and r["sampler"] == sampler]
         if pts:
-            axes[0].loglog([p[0] for p in pts], [p[1] for p in pts], "o-", color=colour, label=sampler, ms=4)
+            axes[0].loglog([p[0] for p in pts], [p[1] for p in pts], "o-", color=color, label=sampler, ms=4)
     axes[0].set_title("Antialiasing: error vs time (edges, box filter)", fontsize=9)
     axes[0].set_xlabel("render time (s)")
     axes[0].set_ylabel("RMSE")
     # sphere: at 1e4
-    for (precision, method), colour in {("float", "textbook"): "tab:red", ("float", "stable"): "tab:blue",
+    for (precision, method), color in {("float", "textbook"): "tab:red", ("float", "stable"): "tab:blue",
                                         ("double", "textbook"): "tab:orange",
                                         ("double", "stable"): "tab:green"}.items():
         pts = [r for r in spheres if r["precision"] == precision and r["method"] == method]
         if pts:
             axes[1].semilogx([max(num(r["depth_error_median"]), 1e-18) for r in pts],
-                             [num(r["mrays_per_s"]) for r in pts], "o-", color=colour,
+                             [num(r["mrays_per_s"]) for r in pts], "o-", color=color,
                              label="%s %s" % (method, precision), ms=4)
     axes[1].set_title("Spheres at 1e1..1e6: speed vs depth error", fontsize=9)
     axes[1].set_xlabel("median depth error / R")
@@ -385,7 +385,7 @@ def plot_headline(data, charts):
         contract = os.path.join(data, "triangle_contract.csv")
         if os.path.exists(contract):
             rows += [r for r in read(contract)[1] if r["method"] == "watertight+fma"]
-        for method, colour in (("moller_trumbore", "tab:red"), ("watertight", "tab:blue"),
+        for method, color in (("moller_trumbore", "tab:red"), ("watertight", "tab:blue"),
                                ("watertight+fma", "tab:orange")):
             for ray_set, marker in (("surface", "o"), ("edges", "s"), ("vertices", "D")):
                 pts = [r for r in rows if r["method"] == method and r["rays"] == ray_set]
@@ -394,7 +394,7 @@ def plot_headline(data, charts):
                 leaks = sum(num(r["leaks"]) for r in pts) / sum(num(r["ray_count"]) for r in pts)
                 speed = sum(num(r["ray_count"]) * num(r["triangles"]) for r in pts) / sum(
                     num(r["seconds"]) for r in pts) / 1e6
-                axes[2].semilogx([max(leaks, 3e-6)], [speed], marker, color=colour, ms=7,
+                axes[2].semilogx([max(leaks, 3e-6)], [speed], marker, color=color, ms=7,
                                  label="%s, %s" % (method.replace("_", "-"), ray_set))
         axes[2].set_xticks([3e-6, 1e-4, 1e-2, 1])
         axes[2].set_xticklabels(["none", "1e-4", "1e-2", "1"])

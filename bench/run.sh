@@ -72,12 +72,12 @@ run() { # run NAME PROGRAM [ARGS...]
 run sphere bench_sphere "see bench/CMakeLists.txt"
 run sphere bench_sphere_double "not built when rt::real is double already"
 run sampling bench_sampling "see bench/CMakeLists.txt"
-run triangle bench_triangle "needs include/rt/intersect.hpp (stage 04)"
-run triangle bench_triangle_contract "needs include/rt/intersect.hpp (stage 04)"
-run groups bench_groups "needs include/rt/intersect.hpp (stage 04)"
-run acne bench_acne "needs include/rt/intersect.hpp (stage 04)"
+run triangle bench_triangle "needs include/rt/accelerator.hpp (stage 04)"
+run triangle bench_triangle_contract "needs include/rt/accelerator.hpp (stage 04)"
+run groups bench_groups "needs include/rt/accelerator.hpp (stage 04)"
+run acne bench_acne "needs include/rt/accelerator.hpp (stage 04)"
 run embree bench_embree "needs Embree 3: apt-get install libembree-dev"
-run frame bench_frame "needs include/rt/intersect.hpp (stage 04)"
+run frame bench_frame "needs include/rt/accelerator.hpp (stage 04)"
 
 if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
   echo "==== charts: /usr/bin/python3 bench/plot.py"

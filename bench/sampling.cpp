@@ -200,8 +200,8 @@ int main(int argc, char** argv)
             soft.theory_jittered = "-0.5";
             const rt::ray_generator gen = rt::make_ray_generator(soft_scene->cam, soft.width, soft.height);
             soft.ray_at = [gen](real x, real y) { return rt::generate_ray(gen, x, y); };
-            // the shaded colour with this sample's random numbers (lens, light points, gloss)
-            const rt::radiance_function shaded = rt::make_radiance(*soft_scene, rt::aov_kind::none);
+            // the shaded color with this sample's random numbers (lens, light points, gloss)
+            const rt::radiance_function shaded = rt::make_radiance(*soft_scene, rt::aov_kind::shaded);
             soft.radiance = [soft_scene, shaded](const rt::ray& r, rt::sample_context& ctx) { return shaded(r, ctx); };
             cases.push_back(soft);
             reference_spps.push_back(o.quick ? 256 : 4096);

@@ -252,22 +252,22 @@ std::string load_message(const std::string& text)
     return "(no error)";
 }
 
-/// The colour the --pixel story of stages 05 to 08 prints for the showcase
+/// The color the --pixel story of stages 05 to 08 prints for the showcase
 /// scene: the ray through the centre of the pixel in column `column` from the
 /// left and row `row` from the top (j = ny - 1 - row from the bottom), through
-/// the library's accelerator, with `colour(scene, accelerator, ray)`.
-template <class Colour>
-rt::color showcase_pixel(const fs::path& root, int column, int row, Colour colour, int max_depth = -1)
+/// the library's accelerator, with `color(scene, accelerator, ray)`.
+template <class Color>
+rt::color showcase_pixel(const fs::path& root, int column, int row, Color color, int max_depth = -1)
 {
     rt::scene s = rt::load_scene(root / "scenes" / "showcase.scene");
     if (max_depth >= 0) // --max-depth N
         s.max_depth = max_depth;
     const rt::accelerator accel(s);
     const rt::ray_generator gen = rt::make_ray_generator(s.cam, s.width, s.height);
-    return colour(s, accel, rt::pixel_ray(gen, column, s.height - 1 - row));
+    return color(s, accel, rt::pixel_ray(gen, column, s.height - 1 - row));
 }
 
-rt::color stage05_colour(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
+rt::color stage05_color(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
 {
     rt::hit_record hit;
     if (!accel.closest_hit(r, 0, std::numeric_limits<rt::real>::infinity(), hit))
@@ -275,12 +275,12 @@ rt::color stage05_colour(const rt::scene& s, const rt::accelerator& accel, const
     return rt::direct_lighting(s, hit, r.direction, [](const rt::light_sample&) { return true; });
 }
 
-rt::color stage07_colour(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
+rt::color stage07_color(const rt::scene& s, const rt::accelerator& accel, const rt::ray& r)
 {
     return rt::ray_color(s, accel, r);
 }
 
-/// Stage 09's colour of the pixel in `column`, `row` (from the top) of
+/// Stage 09's color of the pixel in `column`, `row` (from the top) of
 /// scenes/glass.scene, and the closest-hit and any-hit queries it took.
 std::pair<rt::color, std::uint64_t> glass_pixel(const fs::path& root, int column, int row, int max_depth = -1)
 {
@@ -385,8 +385,8 @@ std::string schlick_table(rt::real eta, rt::real eta_t, const std::vector<double
     return out;
 }
 
-/// "colour (linear) (r, g, b)" as the story prints it (%.9g).
-std::string story_colour(const rt::color& c)
+/// "color (linear) (r, g, b)" as the story prints it (%.9g).
+std::string story_color(const rt::color& c)
 {
     return formatted("(%.9g, %.9g, %.9g)", double(c.r), double(c.g), double(c.b));
 }
@@ -398,7 +398,7 @@ std::string story_bytes_gamma(const rt::color& c)
            std::to_string(rt::to_byte(c.b, 2.2f));
 }
 
-/// The stage-08 story's lines after the colour: exposed, tone mapped, stored bytes.
+/// The stage-08 story's lines after the color: exposed, tone mapped, stored bytes.
 std::string stage08_story(const rt::color& linear, const rt::encoding& enc)
 {
     auto text = [](const rt::color& c) {
@@ -689,36 +689,36 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         all["stage01.message." + name] = [scene_text] { return load_message(scene_text); };
     }
     // stages 05, 07 and 08: the --pixel stories of the showcase scene (float build)
-    all["stage05.showcase_320_180.colour.float"] = [root] {
-        return story_colour(showcase_pixel(root, 320, 180, stage05_colour));
+    all["stage05.showcase_320_180.color.float"] = [root] {
+        return story_color(showcase_pixel(root, 320, 180, stage05_color));
     };
     all["stage05.showcase_320_180.bytes.float"] = [root] {
-        return story_bytes_gamma(showcase_pixel(root, 320, 180, stage05_colour));
+        return story_bytes_gamma(showcase_pixel(root, 320, 180, stage05_color));
     };
-    all["stage05.showcase_330_150.colour.float"] = [root] {
-        return story_colour(showcase_pixel(root, 330, 150, stage05_colour));
+    all["stage05.showcase_330_150.color.float"] = [root] {
+        return story_color(showcase_pixel(root, 330, 150, stage05_color));
     };
     for (const auto& [column, row] : std::vector<std::pair<int, int>>{{330, 150}, {290, 150}, {320, 140}}) {
         const int c = column, r = row;
         const std::string at = std::to_string(c) + "_" + std::to_string(r);
-        all["stage07.showcase_" + at + ".colour.float"] = [root, c, r] {
-            return story_colour(showcase_pixel(root, c, r, stage07_colour));
+        all["stage07.showcase_" + at + ".color.float"] = [root, c, r] {
+            return story_color(showcase_pixel(root, c, r, stage07_color));
         };
         all["stage07.showcase_" + at + ".bytes.float"] = [root, c, r] {
-            return story_bytes_gamma(showcase_pixel(root, c, r, stage07_colour));
+            return story_bytes_gamma(showcase_pixel(root, c, r, stage07_color));
         };
     }
-    all["stage07.showcase_330_150.colour_depth_0.float"] = [root] {
-        return story_colour(showcase_pixel(root, 330, 150, stage07_colour, 0));
+    all["stage07.showcase_330_150.color_depth_0.float"] = [root] {
+        return story_color(showcase_pixel(root, 330, 150, stage07_color, 0));
     };
     all["stage08.showcase_290_150.story.float"] = [root] {
-        return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), rt::encoding{});
+        return stage08_story(showcase_pixel(root, 290, 150, stage07_color), rt::encoding{});
     };
     all["stage08.showcase_290_150.story_reinhard.float"] = [root] {
         rt::encoding enc;
         enc.exposure = 1.0f;
         enc.tonemap = rt::tonemap_kind::reinhard;
-        return stage08_story(showcase_pixel(root, 290, 150, stage07_colour), enc);
+        return stage08_story(showcase_pixel(root, 290, 150, stage07_color), enc);
     };
     // stage 09: Schlick against Fresnel, and the --pixel story of the glass scene
     all["stage09.schlick_air_to_glass"] = [] {
@@ -730,11 +730,11 @@ std::map<std::string, figure_function> figures(const fs::path& root)
     all["stage09.critical_angle"] = [] {
         return formatted("%.1f", std::asin(1 / 1.5) * 180 / 3.14159265358979323846);
     };
-    all["stage09.glass_180_200.colour.float"] = [root] { return story_colour(glass_pixel(root, 180, 200).first); };
+    all["stage09.glass_180_200.color.float"] = [root] { return story_color(glass_pixel(root, 180, 200).first); };
     all["stage09.glass_180_200.bytes.float"] = [root] { return story_bytes_gamma(glass_pixel(root, 180, 200).first); };
     all["stage09.glass_180_200.queries"] = [root] { return std::to_string(glass_pixel(root, 180, 200).second); };
-    all["stage09.glass_180_200.colour_depth_1.float"] = [root] {
-        return story_colour(glass_pixel(root, 180, 200, 1).first);
+    all["stage09.glass_180_200.color_depth_1.float"] = [root] {
+        return story_color(glass_pixel(root, 180, 200, 1).first);
     };
     // stage 10: Monte Carlo convergence, the penumbra's noise, the lens's blur in soft.scene
     all["stage10.sphere_light_share"] = [] { return sphere_light_table(); };

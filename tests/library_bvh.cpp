@@ -694,7 +694,7 @@ TEST_CASE("a leaf block's normals are triangle_normal's, and zero for spheres an
                 p[lane] = rt::pack_sphere(rt::sphere{a, scale, 0}, 1);
         }
         const rt::packed_primitive* lanes[4] = {&p[0], &p[1], &p[2], &p[3]};
-        const rt::triangle_block block = rt::pack_triangle_block(lanes, n);
+        const rt::detail::triangle_block block = rt::detail::pack_triangle_block(lanes, n);
         for (std::size_t lane = 0; lane < 4; ++lane) {
             vec3 expected(0);
             if (lane < n && !(p[lane].id & rt::sphere_flag))
@@ -734,7 +734,7 @@ TEST_CASE("a BVH hit's record filled from its block is fill_triangle_record's, f
         const vec3 c = round % 50 == 0 ? b : point(); // every 50th with two corners the same: no normal
         rt::packed_primitive p{{a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z}, 0};
         const rt::packed_primitive* lanes[4] = {&p, &p, &p, &p};
-        const rt::triangle_block block = rt::pack_triangle_block(lanes, 4);
+        const rt::detail::triangle_block block = rt::detail::pack_triangle_block(lanes, 4);
         const int lane = round % 4;
         real b1 = weight(random), b2 = weight(random) * (1 - b1);
         if (round % 7 == 0)
@@ -774,7 +774,7 @@ TEST_CASE("a block's closest lane is the one replaces() keeps: the smallest t, a
     std::size_t cases = 0, ties = 0, wrong = 0;
     for (int round = 0; round < 400; ++round)
         for (int mask = 1; mask < 16; ++mask) {
-            rt::triangle_block b{};
+            rt::detail::triangle_block b{};
             rt::detail::block_hits hits{};
             for (int lane = 0; lane < 4; ++lane) {
                 b.id[lane] = std::uint32_t(pick_id(random));
@@ -832,9 +832,9 @@ TEST_CASE("flat and BVH accelerators, scalar and SIMD traversal agree hit for hi
             rt::primitive_hit scalar_hit, simd_hit;
             bool tree_scalar = false, tree_simd = false, any_agree = false;
             tree.with_tree([&](const auto& t) { // the tree of the path the accelerator walks
-                tree_scalar = t.closest_scalar(r, 0, rt::infinity, scalar_hit);
-                tree_simd = t.closest(r, 0, rt::infinity, simd_hit);
-                any_agree = t.any_scalar(r, 0, rt::infinity) == t.any(r, 0, rt::infinity);
+                tree_scalar = t.closest_hit_scalar(r, 0, rt::infinity, scalar_hit);
+                tree_simd = t.closest_hit(r, 0, rt::infinity, simd_hit);
+                any_agree = t.any_hit_scalar(r, 0, rt::infinity) == t.any_hit(r, 0, rt::infinity);
             });
             bool agree = flat_hit == tree_hit && tree_scalar == tree_simd && tree_hit == tree_simd && any_agree &&
                          flat.any_hit(r, 0, rt::infinity) == tree.any_hit(r, 0, rt::infinity);

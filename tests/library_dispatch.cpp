@@ -124,9 +124,9 @@ comparison compare(const rt::accelerator& tree, const rt::accelerator& flat, con
         // the same tree walked one value at a time
         const bool scalar_same = tree.with_tree([&](const auto& t) {
             rt::primitive_hit simd_hit, scalar_hit;
-            const bool a = t.closest(r, 0, rt::infinity, simd_hit);
-            const bool b = t.closest_scalar(r, 0, rt::infinity, scalar_hit);
-            bool agree = a == b && t.any(r, 0, rt::infinity) == t.any_scalar(r, 0, rt::infinity);
+            const bool a = t.closest_hit(r, 0, rt::infinity, simd_hit);
+            const bool b = t.closest_hit_scalar(r, 0, rt::infinity, scalar_hit);
+            bool agree = a == b && t.any_hit(r, 0, rt::infinity) == t.any_hit_scalar(r, 0, rt::infinity);
             if (agree && a)
                 agree = same_bits(simd_hit.t, scalar_hit.t) && simd_hit.id == scalar_hit.id &&
                         same_bits(simd_hit.b0, scalar_hit.b0) && same_bits(simd_hit.b1, scalar_hit.b1) &&
@@ -286,8 +286,8 @@ TEST_CASE("the paths agree with each other on many rays through the bunny")
             const bool blocked = tree.any_hit(rays[i], 0, rt::infinity);
             const bool same = tree.with_tree([&](const auto& t) {
                 rt::primitive_hit scalar_hit;
-                const bool b = t.closest_scalar(rays[i], 0, rt::infinity, scalar_hit);
-                return b == (hit.back()[i] != 0) && blocked == b && t.any_scalar(rays[i], 0, rt::infinity) == b &&
+                const bool b = t.closest_hit_scalar(rays[i], 0, rt::infinity, scalar_hit);
+                return b == (hit.back()[i] != 0) && blocked == b && t.any_hit_scalar(rays[i], 0, rt::infinity) == b &&
                        (!b || (same_bits(scalar_hit.t, records.back()[i].t) &&
                                same_bits(scalar_hit.b1, records.back()[i].b1) &&
                                same_bits(scalar_hit.b2, records.back()[i].b2)));

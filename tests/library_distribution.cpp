@@ -165,7 +165,7 @@ TEST_CASE("the renderer's thin lens: a plane in focus comes out exactly as with 
         o.height = s.height;
         o.samples_per_pixel = 16;
         o.threads = 1;
-        return rt::render(o, rt::camera_rays(s.cam, s.width, s.height), rt::make_radiance(s, rt::aov_kind::none)).pixels;
+        return rt::render(o, rt::camera_rays(s.cam, s.width, s.height), rt::make_radiance(s, rt::aov_kind::shaded)).pixels;
     };
     const auto differing = [](const rt::image& a, const rt::image& b) {
         int count = 0;
@@ -188,7 +188,7 @@ TEST_CASE("the renderer's soft shadow: a pixel under a half-hidden square light 
     // 2e-3 around it), white (kd 1, no ambient), under the square light
     // [-1, 1] x [-1, 1] at height 4 (intensity 1, no falloff); a large
     // triangle at height 2 hides every light point with x < 0. One sample's
-    // colour is kd I max(0, n.l) for its random light point when that point is
+    // color is kd I max(0, n.l) for its random light point when that point is
     // visible, so the pixel's mean over N samples tends to
     //     E = (1 / area) integral over the light of [x > 0] 4 / |y - p| dA,
     // computed here by the midpoint rule, and its standard deviation is
@@ -215,7 +215,7 @@ TEST_CASE("the renderer's soft shadow: a pixel under a half-hidden square light 
     o.samples_per_pixel = 4096;
     o.threads = 1;
     const rt::image out =
-        rt::render(o, rt::camera_rays(s.cam, 1, 1), rt::make_radiance(s, rt::aov_kind::none)).pixels;
+        rt::render(o, rt::camera_rays(s.cam, 1, 1), rt::make_radiance(s, rt::aov_kind::shaded)).pixels;
     const double got = double(out.at(0, 0).r), sigma = std::sqrt((E2 - E * E) / o.samples_per_pixel);
     INFO("expected the pixel to average the half-visible light, " << E << " (5 sigma = " << 5 * sigma << "), found "
                                                                    << got << "; " << (got - E) / sigma << " sigma away");

@@ -118,7 +118,7 @@ TEST_CASE("PPM through the pipeline: the header, then the pipeline's bytes, top 
     rt::encoding enc;
     enc.tonemap = rt::tonemap_kind::reinhard;
     std::ostringstream out;
-    rt::write_ppm(out, img, enc);
+    rt::write_ppm_encoded(out, img, enc);
     const std::string bytes = out.str();
     const std::string header = "P6\n2 2\n255\n";
     REQUIRE(bytes.size() == header.size() + 12);
@@ -148,7 +148,7 @@ TEST_CASE("PPM through the pipeline: each of the 256 byte levels is stored as th
     for (int k = 0; k < 256; ++k)
         img.at(k, 0) = rt::color(float(k) / 255.0f, float(255 - k) / 255.0f, float(k) / 255.0f);
     std::ostringstream out;
-    rt::write_ppm(out, img, enc);
+    rt::write_ppm_encoded(out, img, enc);
     const std::string bytes = out.str();
     const std::string header = "P6\n256 1\n255\n";
     REQUIRE(bytes.size() == header.size() + 256 * 3);
@@ -164,7 +164,7 @@ TEST_CASE("PPM through the pipeline: each of the 256 byte levels is stored as th
     }
 }
 
-TEST_CASE("save_image with an encoding: .ppm holds the pipeline's bytes, .png is a PNG, .pfm is linear")
+TEST_CASE("save_image_encoded: .ppm holds the pipeline's bytes, .png is a PNG, .pfm is linear")
 {
     scratch_folder folder("save");
     rt::image img(3, 1);
@@ -174,9 +174,9 @@ TEST_CASE("save_image with an encoding: .ppm holds the pipeline's bytes, .png is
     rt::encoding enc;
     enc.exposure = 0.5f;
     enc.tonemap = rt::tonemap_kind::aces;
-    rt::save_image(folder.path / "a.ppm", img, enc);
-    rt::save_image(folder.path / "a.png", img, enc);
-    rt::save_image(folder.path / "a.pfm", img, enc);
+    rt::save_image_encoded(folder.path / "a.ppm", img, enc);
+    rt::save_image_encoded(folder.path / "a.png", img, enc);
+    rt::save_image_encoded(folder.path / "a.pfm", img, enc);
 
     const std::string ppm = read_all(folder.path / "a.ppm");
     const std::vector<std::uint8_t> expected = rt::encode_image(img, enc);
@@ -257,9 +257,9 @@ TEST_CASE("PFM round trip is bit-exact: negative, tiny, huge, zero, -0, infinite
         for (int channel = 0; channel < 3; ++channel)
             CHECK(bits_of(back.pixels[k][channel]) == bits_of(img.pixels[k][channel]));
 
-    // and through a file written by save_image
+    // and through a file written by save_image_encoded
     scratch_folder folder("pfm");
-    rt::save_image(folder.path / "round.pfm", img, rt::encoding{});
+    rt::save_image_encoded(folder.path / "round.pfm", img, rt::encoding{});
     std::ifstream in(folder.path / "round.pfm", std::ios::binary);
     CHECK(identical(rt::read_pfm(in, "round.pfm"), img));
 }
@@ -309,7 +309,7 @@ TEST_CASE("AOVs are stored as data: no tone curve, and depth scaled by the image
     CHECK(normals.tonemap == rt::tonemap_kind::clamp);
     CHECK(normals.gamma == 1.0f);
     // and the shaded image keeps its own settings
-    CHECK(rt::output_encoding(rt::aov_kind::none, shaded, depth).tonemap == rt::tonemap_kind::aces);
+    CHECK(rt::output_encoding(rt::aov_kind::shaded, shaded, depth).tonemap == rt::tonemap_kind::aces);
 }
 
 TEST_CASE("atomic output: a write that fails half-way leaves the earlier file intact and nothing else")
@@ -317,7 +317,7 @@ TEST_CASE("atomic output: a write that fails half-way leaves the earlier file in
     scratch_folder folder("atomic");
     const std::filesystem::path target = folder.path / "render.pfm";
     const rt::image first(2, 1, rt::color(0.5f));
-    rt::save_image(target, first, rt::encoding{}); // PFM: linear, no encoding step
+    rt::save_image_encoded(target, first, rt::encoding{}); // PFM: linear, no encoding step
     const std::string before = read_file_bytes(target);
     REQUIRE(before.size() == std::string("PF\n2 1\n-1\n").size() + 2 * 3 * 4);
 
@@ -339,9 +339,9 @@ TEST_CASE("atomic output: a write that fails half-way leaves the earlier file in
     CHECK(files == 1);
 
     // an unwritable destination is an error before anything is written
-    CHECK_THROWS_AS(rt::save_image(folder.path / "missing-folder" / "x.pfm", first, rt::encoding{}), rt::error);
-    CHECK_THROWS_AS(rt::save_image(folder.path, first, rt::encoding{}), rt::error); // a folder, not a file
-    CHECK_THROWS_AS(rt::save_image(folder.path / "x.jpg", first, rt::encoding{}), rt::error);
+    CHECK_THROWS_AS(rt::save_image_encoded(folder.path / "missing-folder" / "x.pfm", first, rt::encoding{}), rt::error);
+    CHECK_THROWS_AS(rt::save_image_encoded(folder.path, first, rt::encoding{}), rt::error); // a folder, not a file
+    CHECK_THROWS_AS(rt::save_image_encoded(folder.path / "x.jpg", first, rt::encoding{}), rt::error);
     CHECK_THROWS_AS(rt::check_image_output(folder.path / "x.jpg"), rt::error); // checked before rendering
     CHECK_THROWS_AS(rt::check_image_output(folder.path / "missing-folder" / "x.png"), rt::error);
     CHECK_NOTHROW(rt::check_image_output(folder.path / "next.PNG"));

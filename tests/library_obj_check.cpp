@@ -1,6 +1,6 @@
 // library_obj_check.cpp - the OBJ and MTL loader (include/rt/obj_loader.hpp):
 // a mesh keeps only what its file gives, faces with negative indices and
-// polygons, MTL colours per face, the Cornell box, and malformed or missing
+// polygons, MTL colors per face, the Cornell box, and malformed or missing
 // files as one-line errors with file:line:col. No exercise is called.
 #include "rt_doctest.hpp"
 
@@ -122,14 +122,14 @@ TEST_CASE("OBJ faces: negative indices count back, polygons are triangulated, ze
     CHECK(rt::summary(degenerate).find("2 degenerate triangles dropped") != std::string::npos);
 }
 
-TEST_CASE("MTL colours become rt materials, per face")
+TEST_CASE("MTL colors become rt materials, per face")
 {
     const std::filesystem::path folder = scratch_folder("mtl");
-    write_file(folder / "colours.mtl", "# two materials\n"
+    write_file(folder / "colors.mtl", "# two materials\n"
                                        "newmtl red\nKa 0.1 0.2 0.3\nKd 0.8 0.1 0.1   # inline comment\n"
                                        "Ks 0.5 0.5 0.5\nNs 64\nillum 2\n"
                                        "newmtl mirror\nKd 0.5\nKs 0.9 0.9 0.9\nillum 3\nKe 1 1 1\nmap_Kd wood.png\n");
-    const rt::obj_result loaded = rt::load_obj(write_file(folder / "coloured.obj", "mtllib colours.mtl\n"
+    const rt::obj_result loaded = rt::load_obj(write_file(folder / "colored.obj", "mtllib colors.mtl\n"
                                                                                    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
                                                                                    "f 1 2 3\nusemtl red\nf 2 4 3\n"
                                                                                    "usemtl mirror\nf 1 2 4\n"));

@@ -153,7 +153,7 @@ TEST_CASE("a sphere smaller than the rounding of its centre is refused by the ch
     rt::sphere fine = tiny;
     fine.radius = real(1);
     CHECK(rt::sphere_fits_its_position(fine));
-    const std::string message = rt::sphere_radius_expected(tiny) + ", found " + rt::sphere_radius_found(tiny);
+    const std::string message = rt::detail::sphere_radius_expected(tiny) + ", found " + rt::detail::sphere_radius_found(tiny);
     CHECK(message.find("radius 0.00071") != std::string::npos);
     CHECK(message.find('\n') == std::string::npos);
 

@@ -695,22 +695,22 @@ TEST_CASE("progress line and summary: percent, ETA = elapsed (total - done) / do
     p.pixels_total = 100;
     p.seconds = 3;
     p.rays = 4500000;
-    const std::string line = rt::progress_line(p, 20);
+    const std::string line = rt::detail::progress_line(p, 20);
     CHECK(line.substr(0, 22) == "[#####...............]");
     CHECK(line.find(" 25%") != std::string::npos);
     CHECK(line.find("elapsed 3.00 s") != std::string::npos);
     CHECK(line.find("ETA 9.00 s") != std::string::npos);      // 3 * 75 / 25
     CHECK(line.find("1.50 Mrays/s") != std::string::npos);    // 4.5e6 / 3
     p.pixels_done = 0;
-    CHECK(rt::progress_line(p).find("ETA ?") != std::string::npos);
+    CHECK(rt::detail::progress_line(p).find("ETA ?") != std::string::npos);
 
-    CHECK(rt::format_duration(0.5) == "0.50 s");
-    CHECK(rt::format_duration(42.26) == "42.3 s");
-    CHECK(rt::format_duration(125) == "2 min 05 s");
-    CHECK(rt::format_duration(3 * 3600 + 7 * 60) == "3 h 07 min");
-    CHECK(rt::format_count(950) == "950");
-    CHECK(rt::format_count(12345) == "12.3 k");
-    CHECK(rt::format_count(4.56e6) == "4.56 M");
+    CHECK(rt::detail::format_duration(0.5) == "0.50 s");
+    CHECK(rt::detail::format_duration(42.26) == "42.3 s");
+    CHECK(rt::detail::format_duration(125) == "2 min 05 s");
+    CHECK(rt::detail::format_duration(3 * 3600 + 7 * 60) == "3 h 07 min");
+    CHECK(rt::detail::format_count(950) == "950");
+    CHECK(rt::detail::format_count(12345) == "12.3 k");
+    CHECK(rt::detail::format_count(4.56e6) == "4.56 M");
 
     rt::render_stats s;
     s.width = 640;

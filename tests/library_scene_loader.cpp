@@ -59,7 +59,7 @@ TEST_CASE("the scene holds exactly the shapes, materials and lights the file dec
     CHECK(s.max_depth == 3);
 }
 
-TEST_CASE("a dielectric: ior and attenuation are read, and its diffuse colour defaults to 0 (clear glass)")
+TEST_CASE("a dielectric: ior and attenuation are read, and its diffuse color defaults to 0 (clear glass)")
 {
     const rt::scene s = rt::load_scene_from_string("material glass ior 1.5 attenuation 0.1 0.2 0.3\n"
                                                    "material tinted ior 1.33 kd 0.1 0.2 0.3\n"

@@ -212,8 +212,8 @@ TEST_CASE("a sliver just in front of a spawned ray blocks it, and the ray still 
         rt::primitive_hit scalar;
         if (kind == rt::accelerator_kind::bvh) {
             world.with_tree([&](const auto& tree) {
-                CHECK(tree.any_scalar(up, 0, 5));
-                CHECK(tree.closest_scalar(up, 0, 5, scalar));
+                CHECK(tree.any_hit_scalar(up, 0, 5));
+                CHECK(tree.closest_hit_scalar(up, 0, 5, scalar));
             });
         }
     }

@@ -214,7 +214,7 @@ TEST_CASE("a fused multiply-add in the edge functions lets rays through shared e
 
 TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, through shared edges and vertices")
 {
-    // The BVH tests its leaves four triangles at a time (rt::triangle_block,
+    // The BVH tests its leaves four triangles at a time (rt::detail::triangle_block,
     // rt::detail::intersect_block: SSE where available). Each lane must give
     // exactly what intersect_watertight gives for that triangle alone: the same
     // hit or miss, the same t and barycentrics, bit for bit. Rays from inside a
@@ -235,9 +235,9 @@ TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, 
     ball.radius = r / 2;
     prims.insert(prims.begin() + 5, rt::pack_sphere(ball, 999)); // lane 1 of block 1
     REQUIRE(prims.size() % 4 == 1);                                 // the last block has one lane
-    std::vector<rt::triangle_block> blocks;
+    std::vector<rt::detail::triangle_block> blocks;
     for (std::size_t first = 0; first < prims.size(); first += 4)
-        blocks.push_back(rt::pack_triangle_block(prims.data(), first, std::min<std::size_t>(4, prims.size() - first)));
+        blocks.push_back(rt::detail::pack_triangle_block(prims.data(), first, std::min<std::size_t>(4, prims.size() - first)));
     REQUIRE(blocks.size() == (prims.size() + 3) / 4);
 
     std::vector<rt::ray> rays;
@@ -268,7 +268,7 @@ TEST_CASE("the SIMD leaf test and the scalar watertight test agree hit for hit, 
         const rt::detail::leaf_ray leaf = rt::detail::make_leaf_ray(w);
         bool any = false;
         for (const real tmax : {rt::infinity, real(1)}) { // t = 1 is where the targets are
-            for (const rt::triangle_block& b : blocks) {
+            for (const rt::detail::triangle_block& b : blocks) {
                 rt::detail::block_hits simd;
                 const int mask = rt::detail::intersect_block(b, leaf, w, 0, tmax, simd);
                 for (int lane = 0; lane < 4; ++lane) {

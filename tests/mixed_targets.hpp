@@ -21,7 +21,7 @@ namespace rt_test {
 /// One unit's view of the fast path and its answers.
 struct unit_trace {
     int width = 0;             ///< rt::bvh_width there
-    std::string node_type;     ///< typeid(rt::bvh_node).name() there
+    std::string node_type;     ///< typeid(rt::detail::bvh_node).name() there
     std::string accelerator_type; ///< typeid(rt::accelerator).name() there
     std::vector<float> t;      ///< each ray's closest hit (infinity: none), through rt::accelerator
     std::vector<std::uint32_t> primitive; ///< and the primitive hit
@@ -37,7 +37,7 @@ namespace {
 {
     unit_trace out;
     out.width = rt::bvh_width;
-    out.node_type = typeid(rt::bvh_node).name();
+    out.node_type = typeid(rt::detail::bvh_node).name();
     out.accelerator_type = typeid(rt::accelerator).name();
     const rt::accelerator accel(s, rt::accelerator_kind::bvh);
     for (const rt::ray& r : rays) {

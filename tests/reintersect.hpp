@@ -147,7 +147,7 @@ void spawn_from(const rt::accelerator& world, const rt::ray& primary, const rt::
         const vec3 target = random_point(g);
         if (clear_of(target)) {
             rows[spawn_to_point].add(world.any_hit(rt::spawn_ray_to(rec, target), 0, 1));
-            const vec3 pbr = rt::offset_past_error_bounds(rec.point, rec.point_error, rec.geometric_normal, target - rec.point);
+            const vec3 pbr = rt::detail::offset_past_error_bounds(rec.point, rec.point_error, rec.geometric_normal, target - rec.point);
             rows[pbr_to_point].add(world.any_hit(rt::ray{pbr, target - pbr}, 0, 1));
             const vec3 rtg = rtg_origin(rec, target - rec.point);
             rows[rtg_to_point].add(world.any_hit(rt::ray{rtg, target - rtg}, 0, 1));

@@ -693,12 +693,12 @@ TEST_CASE("an interrupted program leaves nothing: stage08_output sent SIGTERM wh
 
 TEST_CASE("the reason of a failed write: errno named in words")
 {
-    CHECK(rt::reason_of(ENOSPC) == "the disk is full");
-    CHECK(rt::reason_of(EFBIG).find("ulimit -f") != std::string::npos);
-    CHECK(rt::reason_of(ELOOP).find("symbolic link") != std::string::npos);
-    CHECK(rt::reason_of(EACCES) == "permission denied");
-    CHECK(rt::reason_of(ENAMETOOLONG).find("too long") != std::string::npos);
-    CHECK(rt::reason_of(ENOTDIR).find("not a folder") != std::string::npos);
+    CHECK(rt::detail::reason_of(ENOSPC) == "the disk is full");
+    CHECK(rt::detail::reason_of(EFBIG).find("ulimit -f") != std::string::npos);
+    CHECK(rt::detail::reason_of(ELOOP).find("symbolic link") != std::string::npos);
+    CHECK(rt::detail::reason_of(EACCES) == "permission denied");
+    CHECK(rt::detail::reason_of(ENAMETOOLONG).find("too long") != std::string::npos);
+    CHECK(rt::detail::reason_of(ENOTDIR).find("not a folder") != std::string::npos);
 }
 
 namespace {

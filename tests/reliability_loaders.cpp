@@ -187,7 +187,7 @@ TEST_CASE("fuzz: a number tinyobjloader would overflow on is an error at its lin
     // 1e39 is beyond float (largest 3.40282e+38, IEEE 754 binary32), in either build of rt::real,
     // because tinyobjloader converts every coordinate to float.
     CHECK(starts_with(obj_error("v 1e39 0 0\n"), "m.obj:1:3: expected a number for the vertex x within +-3.40282e+38, found '1e39'"));
-    CHECK(starts_with(obj_error("v 0 0 0 +.e2147483648\n"), "m.obj:1:9: expected a number for a vertex's extra value (w or colour) with an exponent"));
+    CHECK(starts_with(obj_error("v 0 0 0 +.e2147483648\n"), "m.obj:1:9: expected a number for a vertex's extra value (w or color) with an exponent"));
     // tinyobjloader adds up a mantissa's digits in a double, inf past about
     // 308 of them, and rt takes normals and texture coordinates from it: 310
     // ones times 1e-309 (about 10/9) became an infinite normal. At most 300 digits.
@@ -247,12 +247,12 @@ TEST_CASE("fuzz: a long path is shortened in a message without cutting a UTF-8 c
     std::string path;
     for (int i = 0; i < 200; ++i)
         path += "\xC3\xA9"; // e with an acute accent, 2 bytes
-    const std::string shown = rt::shown_path(path + "/m.obj");
+    const std::string shown = rt::detail::shown_path(path + "/m.obj");
     CHECK(shown.size() <= 3 + 160);
     CHECK(starts_with(shown, "...\xC3\xA9"));
     CHECK(is_one_text_line(shown));
-    CHECK(rt::shown_path("short/path.obj") == "short/path.obj");
-    CHECK(rt::shown_path("a\nb") == "a?b");
+    CHECK(rt::detail::shown_path("short/path.obj") == "short/path.obj");
+    CHECK(rt::detail::shown_path("a\nb") == "a?b");
 }
 
 // --- found by review ------------------------------------------------------------

@@ -46,7 +46,7 @@ inline rt::scene one_sphere_scene()
     return s;
 }
 
-/// The colour of the orthographic ray through (x, y), looking along -z.
+/// The color of the orthographic ray through (x, y), looking along -z.
 inline rt::color shade_at(const rt::scene& s, double x, double y)
 {
     const rt::ray r{rt::vec3(rt::real(x), rt::real(y), 10), rt::vec3(0, 0, -1)};

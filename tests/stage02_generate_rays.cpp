@@ -307,9 +307,9 @@ TEST_CASE("a default-window camera: fov gives the vertical extent, the image the
     CHECK(o.r == doctest::Approx(3));
 }
 
-TEST_CASE("direction to colour maps [-1, 1] to [0, 1] per channel of the unit direction")
+TEST_CASE("direction to color maps [-1, 1] to [0, 1] per channel of the unit direction")
 {
-    INFO("the colour is (d / |d| + 1) / 2: normalise the direction first; (5, 0, 0) is the unit direction (1, 0, 0) "
+    INFO("the color is (d / |d| + 1) / 2: normalise the direction first; (5, 0, 0) is the unit direction (1, 0, 0) "
          "and gives red 1, not (5 + 1) / 2 = 3");
     const rt::color right = rt::direction_to_color({5, 0, 0});
     CHECK(right.r == doctest::Approx(1));
@@ -330,14 +330,14 @@ TEST_CASE("the ray image's pixels follow the analytic mapping, top row first")
     REQUIRE_MESSAGE(img.height == 2, "expected the ray image to be as tall as the generator (ny = 2)");
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 4; ++i) {
-            // by hand: direction (i - 1.5, j - 0.5, -1), colour (d^ + 1) / 2
+            // by hand: direction (i - 1.5, j - 0.5, -1), color (d^ + 1) / 2
             const double x = i - 1.5, y = j - 0.5, z = -1;
             const double n = std::sqrt(x * x + y * y + z * z);
             const rt::color c = img.at(i, 1 - j); // row j from the bottom is image row 1 - j
             CAPTURE(i);
             CAPTURE(j);
             INFO("pixel (i, j), j counted from the bottom row, is image row ny - 1 - j (the image is stored top row "
-                 "first); its ray has direction d = (i - 1.5, j - 0.5, -1) and its colour is (d / |d| + 1) / 2 = "
+                 "first); its ray has direction d = (i - 1.5, j - 0.5, -1) and its color is (d / |d| + 1) / 2 = "
                  << rt_doctest::text(rt::vec3(rt::real((x / n + 1) / 2), rt::real((y / n + 1) / 2), rt::real((z / n + 1) / 2))));
             CHECK(c.r == doctest::Approx((x / n + 1) / 2));
             CHECK(c.g == doctest::Approx((y / n + 1) / 2));

@@ -25,10 +25,10 @@ using rt_test::one_sphere_scene;
 using rt_test::shade_at;
 using rt_test::test_material;
 
-/// Whether got is (r, g, b) within eps; each channel a CHECK that prints both colours.
+/// Whether got is (r, g, b) within eps; each channel a CHECK that prints both colors.
 bool check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
-    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+    INFO("expected the color " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
                                 << rt_doctest::text(got));
     const bool ok_r = got.r == doctest::Approx(r).epsilon(eps);
     const bool ok_g = got.g == doctest::Approx(g).epsilon(eps);
@@ -223,7 +223,7 @@ TEST_CASE("blinn_phong: the highlight peaks at ks I where h = n, and never goes 
     }
     {
         // n.h < 0 (a viewer far below the light's mirror direction) while n.l > 0:
-        // max(0, n.h)^p is 0; an odd p shows an unclamped cosine as a negative colour
+        // max(0, n.h)^p is 0; an odd p shows an unclamped cosine as a negative color
         m.p = 3;
         const rt::vec3 light = glm::normalize(rt::vec3(1, rt::real(0.2), 0));
         const rt::vec3 viewer = glm::normalize(rt::vec3(-1, -1, 0));

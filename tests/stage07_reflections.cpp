@@ -1,7 +1,7 @@
 // Stage 07 - reflections: L += km raycolor(p, r), r = d - 2 (d.n) n
 // (Fundamentals of Computer Graphics, 4th ed., sec. 4.8).
 //
-// The scenes here have no lights, only ambient light, so every colour is a
+// The scenes here have no lights, only ambient light, so every color is a
 // closed form (ka Ia, km ka Ia, a geometric series) and nothing of stage 05's
 // or 06's exercises is called. Scenes and rays are built here.
 #include "rt_doctest.hpp"
@@ -17,7 +17,7 @@ namespace {
 
 void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
-    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+    INFO("expected the color " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
                                 << rt_doctest::text(got));
     CHECK(got.r == doctest::Approx(r).epsilon(eps));
     CHECK(got.g == doctest::Approx(g).epsilon(eps));
@@ -115,7 +115,7 @@ TEST_CASE("reflect: same length, angle in equals angle out, twice is the identit
     CHECK(up.y == doctest::Approx(3));
 }
 
-TEST_CASE("a mirror shows km times the colour of what it reflects")
+TEST_CASE("a mirror shows km times the color of what it reflects")
 {
     rt::scene s;
     s.ambient = rt::color(1.0f);
@@ -139,7 +139,7 @@ TEST_CASE("a mirror shows km times the colour of what it reflects")
         check_color(rt::ray_color(s, accel, r), 0.5 * 0.2, 0.6 * 0.4, 0.7 * 0.8);
     }
     {
-        INFO("the ball seen directly (not a mirror): expected its own ambient colour ka Ia, nothing reflected");
+        INFO("the ball seen directly (not a mirror): expected its own ambient color ka Ia, nothing reflected");
         check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0, 0, 20), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
     }
     {
@@ -150,7 +150,7 @@ TEST_CASE("a mirror shows km times the colour of what it reflects")
     // With max_depth 0 there is no reflection at all.
     s.max_depth = 0;
     INFO("max_depth 0: the camera ray is at depth 0 and no reflection is traced, so the mirror shows only its own "
-         "ka Ia = 0; a colour here means a reflection was traced: trace one only while depth < s.max_depth");
+         "ka Ia = 0; a color here means a reflection was traced: trace one only while depth < s.max_depth");
     check_color(rt::ray_color(s, accel, r), 0, 0, 0);
 }
 
@@ -174,7 +174,7 @@ TEST_CASE("two facing mirrors: recursion stops at max_depth with a bounded geome
         const double expected = a * (1 - std::pow(k, D + 1)) / (1 - k);
         CAPTURE(D);
         if (!stopped(queries, D))
-            return; // the colours of a recursion the test cut short say nothing more
+            return; // the colors of a recursion the test cut short say nothing more
         INFO("two facing mirrors (ka = 0.1, km = 0.9), max_depth D: expected the camera ray and D reflections, "
              "a (1 + k + ... + k^D) = " << expected << "; more light means more reflections (trace one only while "
              "depth < s.max_depth, and give the reflected ray depth + 1), less means fewer");
@@ -197,7 +197,7 @@ TEST_CASE("a mirror ball reflects the background where its reflections escape")
     const rt::accelerator accel(s);
     // a ray hitting the front of the ball comes back out: 0.8 * background
     INFO("expected km * background = 0.8 * (0.25, 0.5, 1): the reflected ray leaves the ball and sees the sky; "
-         "a darker colour (0.8^k * background) means the reflected ray hit the ball again: "
+         "a darker color (0.8^k * background) means the reflected ray hit the ball again: "
          "start it off the surface (rt::spawn_ray), not at the hit point");
     check_color(rt::ray_color(s, accel, rt::ray{rt::vec3(0.3f, 0.4f, 5), rt::vec3(0, 0, -1)}), 0.2, 0.4, 0.8);
     // a miss is the background itself

@@ -1,4 +1,4 @@
-// Stage 08 - output: the colour pipeline from a linear radiance to the value
+// Stage 08 - output: the color pipeline from a linear radiance to the value
 // an 8-bit file stores: exposure, tone map (tonemap.hpp), transfer function
 // (transfer.hpp), in that order (encoding.hpp).
 //

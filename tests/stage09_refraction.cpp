@@ -1,4 +1,4 @@
-// Stage 09 - refraction: Snell's law, Schlick's reflectance, and the colour
+// Stage 09 - refraction: Snell's law, Schlick's reflectance, and the color
 // seen through glass (Fundamentals of Computer Graphics, 4th ed., sec. 13.1).
 //
 // Every expected value is a closed form. The scenes have no lights and no
@@ -47,14 +47,14 @@ double schlick(double cos_air, double n)
 
 void check_color(const rt::color& got, double r, double g, double b, double eps = 1e-5)
 {
-    INFO("expected the colour " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
+    INFO("expected the color " << rt_doctest::text(rt::vec3(rt::real(r), rt::real(g), rt::real(b))) << ", found "
                                 << rt_doctest::text(got));
     CHECK(got.r == doctest::Approx(r).epsilon(eps));
     CHECK(got.g == doctest::Approx(g).epsilon(eps));
     CHECK(got.b == doctest::Approx(b).epsilon(eps));
 }
 
-/// Clear glass: no ambient, diffuse or specular colour of its own.
+/// Clear glass: no ambient, diffuse or specular color of its own.
 rt::material glass(rt::real ior, rt::color attenuation = rt::color(0.0f))
 {
     rt::material m;
@@ -318,7 +318,7 @@ TEST_CASE("Schlick's reflectance follows its formula at every angle and stays wi
     }
 }
 
-// --- the colour seen through glass ---------------------------------------------
+// --- the color seen through glass ---------------------------------------------
 
 TEST_CASE("a clear glass ball in a uniform sky: L = B (1 - (1 - R) R^(D - 1)), and B itself as D grows")
 {
@@ -470,7 +470,7 @@ TEST_CASE("mirrors trace with glass: a mirror shows a glass ball as glass, and t
     // (-3, 0, 3) and reflects towards a clear glass ball centred at (3, 0, 3),
     // through its centre (R = R0 at both surfaces). Light leaving the ball's
     // far side sees the sky B; light leaving its near side, or reflected off
-    // it, comes back to the mirror and sees km B. With F the colour seen by a
+    // it, comes back to the mirror and sees km B. With F the color seen by a
     // ray inside heading for the far side and N towards the near side:
     //     F = T B + R N,  N = T km B + R F,  L = km (R km B + T F),
     // so L = km B (R km + T (1 + R km) / (1 + R)), T = 1 - R.

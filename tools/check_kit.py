@@ -758,7 +758,7 @@ def find_leaks(texts: Sequence[Tuple[str, str]], answers: Sequence[Answer], stag
     row) where it does not belong: outside every exercise region, or inside another
     region. A region's own answer in its own place is a stage the kit hands out solved,
     as make_kit reports, and no leak; so are its own lines when they are also part of
-    another answer (stage 07's ray colour, handed out, holds the part of stage 09's that
+    another answer (stage 07's ray color, handed out, holds the part of stage 09's that
     repeats it). `cache` keeps each file's parsing between kits."""
     cache = {} if cache is None else cache
     index: Dict[str, List[Tuple[int, int]]] = {}

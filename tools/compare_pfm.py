@@ -11,7 +11,7 @@ difference, with the pixel (column, row from the top) where it is. The last line
 reads "compare_pfm: 1 passed, 0 failed" or "... 0 passed, 1 failed"; exit 0 only
 when it passed, 2 for a file that is not a PFM image (one line saying why).
 
-PFM (Portable Float Map, Paul Debevec's format): a header "PF" (colour) or "Pf"
+PFM (Portable Float Map, Paul Debevec's format): a header "PF" (color) or "Pf"
 (grey), the width and height, a scale whose sign gives the byte order (negative:
 little-endian), then 32-bit floats, rows from the bottom up. Python 3 standard
 library only.

@@ -84,7 +84,7 @@ class Region:
     parameters: List[Tuple[str, bool]]  # (name, is_pack) of each named parameter
     hints: List[str] = field(default_factory=list)  # hint comment lines, stripped
     # Earlier stages whose answers this body repeats ("; repeats stage07" in the marker:
-    # stage 09's ray colour is stage 07's with glass added). A kit that strips one of
+    # stage 09's ray color is stage 07's with glass added). A kit that strips one of
     # them strips this region too, so no finished answer sits beside a stripped one.
     repeats: List[int] = field(default_factory=list)
 

@@ -170,7 +170,7 @@ class BadInput(Exception):
 # ---------------------------------------------------------------- PNG (RFC 2083 / PNG spec 2nd ed.)
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-CHANNELS = {0: 1, 2: 3, 4: 2, 6: 4}  # colour type -> samples per pixel (palettes are not written by rt)
+CHANNELS = {0: 1, 2: 3, 4: 2, 6: 4}  # color type -> samples per pixel (palettes are not written by rt)
 
 
 @dataclass
@@ -249,17 +249,17 @@ def read_png(path: Path, name: Optional[str] = None) -> Picture:
         pos += 12 + length
     if header is None:
         raise BadInput(f"{name}:1:1: expected an IHDR chunk, found none; hint: the file is damaged")
-    width, height, depth, colour, _, _, interlace = header
-    if depth != 8 or colour not in CHANNELS or interlace != 0:
+    width, height, depth, color, _, _, interlace = header
+    if depth != 8 or color not in CHANNELS or interlace != 0:
         raise BadInput(f"{name}:1:1: expected an 8-bit, non-interlaced grey or RGB(A) PNG, found bit depth "
-                       f"{depth}, colour type {colour}, interlace {interlace}; hint: the stage programs write "
+                       f"{depth}, color type {color}, interlace {interlace}; hint: the stage programs write "
                        f"8-bit RGB")
     try:
         raw = zlib.decompress(bytes(idat))
     except zlib.error as e:
         raise BadInput(f"{name}:1:1: expected zlib-compressed image data, found data zlib rejects ({e}); "
                        f"hint: the file is damaged") from None
-    channels = CHANNELS[colour]
+    channels = CHANNELS[color]
     return Picture(width, height, channels, unfilter(raw, width, height, channels, name))
 
 
@@ -286,14 +286,14 @@ class Difference:
 
 def write_png(path: Path, picture: Picture) -> None:
     """An 8-bit PNG of `picture`, every row unfiltered (filter 0), written atomically."""
-    colour = {1: 0, 2: 4, 3: 2, 4: 6}[picture.channels]
+    color = {1: 0, 2: 4, 3: 2, 4: 6}[picture.channels]
     stride = picture.width * picture.channels
     raw = b"".join(b"\0" + picture.data[y * stride:(y + 1) * stride] for y in range(picture.height))
 
     def chunk(kind: bytes, body: bytes) -> bytes:
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
 
-    header = struct.pack(">IIBBBBB", picture.width, picture.height, 8, colour, 0, 0, 0)
+    header = struct.pack(">IIBBBBB", picture.width, picture.height, 8, color, 0, 0, 0)
     write_atomically(PNG_SIGNATURE + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9))
                      + chunk(b"IEND", b""), path)
 

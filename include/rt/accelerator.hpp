@@ -72,15 +72,15 @@ enum class accelerator_kind {
 constexpr std::size_t flat_list_crossover = 4;
 
 /// The names of the accelerator kinds; the first is the default.
-inline constexpr enum_name<accelerator_kind> accelerator_names[] = {
+inline constexpr detail::enum_name<accelerator_kind> accelerator_names[] = {
     {accelerator_kind::automatic, "auto"}, {accelerator_kind::flat, "flat"}, {accelerator_kind::bvh, "bvh"}};
 
-inline const char* name_of(accelerator_kind kind) { return name_in(accelerator_names, kind); }
+inline const char* name_of(accelerator_kind kind) { return detail::name_in(accelerator_names, kind); }
 
 /// "flat", "bvh" or "auto"; anything else is an rt::error.
 inline accelerator_kind parse_accelerator_kind(const std::string& word)
 {
-    if (const std::optional<accelerator_kind> kind = value_named(accelerator_names, word))
+    if (const std::optional<accelerator_kind> kind = detail::value_named(accelerator_names, word))
         return *kind;
     throw error("expected an accelerator (flat, bvh or auto), found '" + word + "'");
 }
@@ -94,10 +94,10 @@ enum class bvh_path {
 };
 
 /// The names of the BVH paths; the first is the default.
-inline constexpr enum_name<bvh_path> bvh_path_names[] = {
+inline constexpr detail::enum_name<bvh_path> bvh_path_names[] = {
     {bvh_path::automatic, "auto"}, {bvh_path::scalar, "scalar"}, {bvh_path::sse, "sse"}, {bvh_path::avx2, "avx2"}};
 
-inline const char* name_of(bvh_path path) { return name_in(bvh_path_names, path); }
+inline const char* name_of(bvh_path path) { return detail::name_in(bvh_path_names, path); }
 
 /// "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)": a path and its node width, for reports.
 inline const char* describe(bvh_path path)
@@ -189,13 +189,13 @@ public:
         primitive_hit h;
         bool found = false;
         if (kind_ == accelerator_kind::flat)
-            found = closest_flat(flat_, r, tmin, tmax, h);
+            found = closest_hit_flat(flat_, r, tmin, tmax, h);
 #if RT_BVH_DISPATCH
         else if (wide_) // the 8-wide walk, compiled for AVX2: a call, never inlined here
-            found = wide_->closest(r, tmin, tmax, h);
+            found = wide_->closest_hit(r, tmin, tmax, h);
 #endif
         else
-            found = tree_.closest(r, tmin, tmax, h);
+            found = tree_.closest_hit(r, tmin, tmax, h);
         if (!found)
             return false;
         complete(r, tmin, tmax, h, rec);
@@ -207,12 +207,12 @@ public:
     bool any_hit(const ray& r, real tmin, real tmax) const
     {
         if (kind_ == accelerator_kind::flat)
-            return any_flat(flat_, r, tmin, tmax);
+            return any_hit_flat(flat_, r, tmin, tmax);
 #if RT_BVH_DISPATCH
         if (wide_)
-            return wide_->any(r, tmin, tmax);
+            return wide_->any_hit(r, tmin, tmax);
 #endif
-        return tree_.any(r, tmin, tmax);
+        return tree_.any_hit(r, tmin, tmax);
     }
 
     /// flat or bvh (automatic is resolved when the accelerator is built).
@@ -307,14 +307,14 @@ private:
     }
 
     // inlined with closest_hit: a call kept the record's inputs and outputs in
-    // memory (closest hits 1-3% faster inlined)
+    // memory
     RT_BVH_INLINE void complete(const ray& r, real tmin, real tmax, const primitive_hit& h, hit_record& rec) const
     {
         const primitive_ref ref = reference(h.id);
         const shape& item = scene_->shapes[ref.shape];
         if (const sphere* ball = std::get_if<sphere>(&item)) {
             hit_sphere(*ball, r, tmin, tmax, rec); // the same call as in the search: the same root
-            refine_sphere_hit(*ball, r, rec);
+            detail::refine_sphere_hit(*ball, r, rec);
         } else {
             // the corners as packed (the same numbers as in the shape)
             const real* v = h.corners;

@@ -170,17 +170,17 @@ inline void check_writable(const std::filesystem::path& target)
 {
     const source_location at{detail::utf8_text(target)};
     const std::filesystem::path folder = target.has_parent_path() ? target.parent_path() : ".";
-    const std::string shown_folder = "'" + shown_path(detail::utf8_text(folder)) + "'";
+    const std::string shown_folder = "'" + detail::shown_path(detail::utf8_text(folder)) + "'";
     const detail::file_status folder_status = detail::status_of(folder);
     if (folder_status.error == ENOENT)
         throw error(at, "expected an existing output folder, found none at " + shown_folder + "; create it first");
     if (folder_status.error != 0)
         throw error(at, "expected an existing output folder, found " + shown_folder + " cannot be reached (" +
-                            reason_of(folder_status.error) + "); choose another output path");
+                            detail::reason_of(folder_status.error) + "); choose another output path");
     if (!folder_status.folder)
         throw error(at, "expected an output folder, found " + shown_folder + " is a file; choose another output path");
     const std::size_t name_length = detail::path_length(target.filename());
-    const std::size_t longest = name_max(folder);
+    const std::size_t longest = detail::name_max(folder);
     if (name_length > longest)
         throw error(at, "expected a file name of at most " + std::to_string(longest) + " " + detail::length_unit +
                             ", found one of " + std::to_string(name_length) + "; choose a shorter name");
@@ -191,7 +191,7 @@ inline void check_writable(const std::filesystem::path& target)
     const int code = probe_file.create(probe.path());
     if (code != 0)
         throw error(at, "expected a writable output folder, found " + shown_folder + " not writable (" +
-                            reason_of(code) + "); choose another output path");
+                            detail::reason_of(code) + "); choose another output path");
     probe.created();
 }
 
@@ -207,7 +207,7 @@ inline void check_not_input(const std::filesystem::path& target, const std::vect
     for (const std::filesystem::path& input : inputs)
         if (std::filesystem::equivalent(target, input, ec))
             throw error(source_location{detail::utf8_text(target)},
-                        "expected an output path different from the input '" + shown_path(detail::utf8_text(input)) +
+                        "expected an output path different from the input '" + detail::shown_path(detail::utf8_text(input)) +
                             "', found the same file; writing it would destroy the input, so choose another -o");
 }
 
@@ -279,7 +279,7 @@ inline void write_all_atomically(const std::vector<output_file>& outputs)
                 if (!existed[j])
                     detail::remove_file(files[j]->target());
                 else
-                    replaced += (replaced.empty() ? "" : ", ") + shown_path(detail::utf8_text(files[j]->target()));
+                    replaced += (replaced.empty() ? "" : ", ") + detail::shown_path(detail::utf8_text(files[j]->target()));
             }
             throw error(std::string(e.what()) + (replaced.empty() ? "; no other output was written"
                                                                   : "; already replaced: " + replaced));

@@ -2,7 +2,7 @@
 //
 // The course: "RGB floats internally, RGB bytes stored". Every 8-bit writer
 // ends here: the early stages' to_byte (image_io.hpp, after a plain gamma) and
-// stage 08's colour pipeline (encoding.hpp, after the tone map and sRGB) both
+// stage 08's color pipeline (encoding.hpp, after the tone map and sRGB) both
 // store quantize(v) of their encoded value v. Rounding to the nearest level
 // reaches every level exactly and errs by at most half a level.
 #pragma once

@@ -15,15 +15,15 @@ namespace rt {
 enum class projection { perspective, orthographic };
 
 /// The words a scene file, a --camera option and the programs name them by.
-inline constexpr enum_name<projection> projection_names[] = {{projection::perspective, "perspective"},
-                                                             {projection::orthographic, "orthographic"}};
+inline constexpr detail::enum_name<projection> projection_names[] = {{projection::perspective, "perspective"},
+                                                                     {projection::orthographic, "orthographic"}};
 
 inline std::optional<projection> projection_from_name(const std::string& name)
 {
-    return value_named(projection_names, name);
+    return detail::value_named(projection_names, name);
 }
 
-inline const char* name_of(projection kind) { return name_in(projection_names, kind); }
+inline const char* name_of(projection kind) { return detail::name_in(projection_names, kind); }
 
 /// The image-plane window: the u range [l, r] and the v range [b, t].
 struct window {

@@ -42,8 +42,8 @@ inline void parse_camera(statement& line, camera& cam)
     else if (kind == "orthographic")
         cam.kind = projection::orthographic;
     else
-        throw parse_error(line.last(), "a camera type (perspective or orthographic)", found_text(kind),
-                          nearest_hint(kind, {"perspective", "orthographic"}));
+        throw make_error(line.last(), "a camera type (perspective or orthographic)", found_text(kind),
+                         nearest_hint(kind, {"perspective", "orthographic"}));
 
     source_location view_at = line.line_start(), up_at = line.line_start();
     line.options({"eye", "look_at", "up", "fov", "window", "focal"}, [&](const std::string& option) {
@@ -60,10 +60,10 @@ inline void parse_camera(statement& line, camera& cam)
         } else if (option == "fov") {
             const real fov = line.number("fov");
             if (!(fov > 0 && fov < 180))
-                throw parse_error(where, "a field of view between 0 and 180 degrees", detail::short_number(double(fov)));
+                throw make_error(where, "a field of view between 0 and 180 degrees", detail::short_number(double(fov)));
             if (cam.kind == projection::orthographic)
-                throw parse_error(where, "a window for an orthographic camera", "fov",
-                                  "fov applies to perspective cameras only; use window l r b t");
+                throw make_error(where, "a window for an orthographic camera", "fov",
+                                 "fov applies to perspective cameras only; use window l r b t");
             cam.fov_degrees = fov;
         } else if (option == "window") {
             window win;
@@ -72,32 +72,32 @@ inline void parse_camera(statement& line, camera& cam)
             win.b = line.number("window b");
             win.t = line.number("window t");
             if (!(win.l < win.r) || !(win.b < win.t))
-                throw parse_error(where, "a window with l < r and b < t", "an empty window");
+                throw make_error(where, "a window with l < r and b < t", "an empty window");
             cam.plane = win;
         } else { // focal
             cam.focal_distance = line.number("focal distance");
             if (!(cam.focal_distance > 0))
-                throw parse_error(where, "a positive focal distance", detail::short_number(double(cam.focal_distance)));
+                throw make_error(where, "a positive focal distance", detail::short_number(double(cam.focal_distance)));
         }
     });
     if (cam.fov_degrees && cam.plane)
-        throw parse_error(line.line_start(), "either fov or window", "both", "give one of them");
+        throw make_error(line.line_start(), "either fov or window", "both", "give one of them");
     const vec3 view = cam.look_at - cam.eye;
     if (glm::dot(view, view) == real(0))
-        throw parse_error(view_at, "a look_at point different from the eye", "the same point",
-                          "the camera needs a direction to look in");
+        throw make_error(view_at, "a look_at point different from the eye", "the same point",
+                         "the camera needs a direction to look in");
     // The frame normalises look_at - eye, which squares its length: past about
     // 1e19 in float that square overflows and every ray would be NaN.
     if (!std::isfinite(glm::dot(view, view)))
-        throw parse_error(view_at, "an eye within about 1e19 of look_at (the square of the distance must fit rt::real)",
-                          "a distance whose square overflows",
-                          "move the scene nearer the origin, or build with -DRT_USE_DOUBLE=ON");
+        throw make_error(view_at, "an eye within about 1e19 of look_at (the square of the distance must fit rt::real)",
+                         "a distance whose square overflows",
+                         "move the scene nearer the origin, or build with -DRT_USE_DOUBLE=ON");
     // the frame normalises up x w too: |up|^2 must be a normal, finite number
     const real up_squared = glm::dot(cam.up, cam.up);
     if (!(up_squared >= std::numeric_limits<real>::min() && std::isfinite(up_squared)))
-        throw parse_error(up_at, "an up vector whose squared length fits rt::real (a length from about 1e-19 to 1e19)",
-                          "one of length " + detail::short_number(double(glm::length(glm::dvec3(cam.up)))),
-                          "the length of up does not matter: use 0 1 0 or 0 0 1");
+        throw make_error(up_at, "an up vector whose squared length fits rt::real (a length from about 1e-19 to 1e19)",
+                         "one of length " + detail::short_number(double(glm::length(glm::dvec3(cam.up)))),
+                         "the length of up does not matter: use 0 1 0 or 0 0 1");
     // up and the view direction scaled to a largest coordinate of 1 first, so
     // that neither a huge nor a tiny vector overflows the test (the test is
     // sin^2 of their angle > 1e-12)
@@ -107,8 +107,8 @@ inline void parse_camera(statement& line, camera& cam)
     const vec3 up = scaled(cam.up), ahead = scaled(view);
     const vec3 side = glm::cross(up, ahead);
     if (!(glm::dot(side, side) > real(1e-12) * glm::dot(ahead, ahead) * glm::dot(up, up)))
-        throw parse_error(up_at, "an up vector not parallel to the view direction", "a parallel one",
-                          "choose an up vector that differs from look_at - eye, such as 0 1 0 or 0 0 1");
+        throw make_error(up_at, "an up vector not parallel to the view direction", "a parallel one",
+                         "choose an up vector that differs from look_at - eye, such as 0 1 0 or 0 0 1");
     // RT_EXERCISE_END
 }
 

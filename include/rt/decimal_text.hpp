@@ -29,10 +29,8 @@
 // libc++'s <version> leaves the macro undefined, also from 20 on, where the
 // overloads exist, so libc++ always takes fast_float). Both are
 // correctly rounded (libstdc++ 12 itself parses with fast_float); fast_float
-// is preferred where both exist because it reads a number faster, inline:
-// 11.6 ns against 14.1 ns through libstdc++ 12's std::from_chars (read_number
-// on the 5.0 million numbers of the 45 MB bunny-loop2.obj, g++ 12 -O2, best
-// of 21 runs), though load_obj takes 1.04 s for that file either way.
+// is preferred where both exist because it reads a number faster, inline
+// (the figures: docs/architecture.md, "Figures behind the comments").
 // The two differ where the standard leaves room (C++17 [charconv.from.chars],
 // LWG 3081): beyond the range std::from_chars reports result_out_of_range and
 // leaves the value alone (libstdc++) or writes 0 or inf (MSVC, fast_float 4

@@ -1,4 +1,4 @@
-// dielectric.hpp - the colour seen along one ray, with glass (stage 09).
+// dielectric.hpp - the color seen along one ray, with glass (stage 09).
 //
 // Stage 07's ray_color (raytracer.hpp), with one more kind of surface: a
 // dielectric (material::ior > 0) splits a ray in two, a reflected and a
@@ -33,10 +33,10 @@
 
 namespace rt {
 
-/// The colour seen along ray r in scene s, as rt::ray_color (stage 07) sees it,
+/// The color seen along ray r in scene s, as rt::ray_color (stage 07) sees it,
 /// and through dielectrics: at a dielectric hit (material::ior > 0), while
-/// depth < s.max_depth, add R times the colour in the mirror direction and
-/// 1 - R times the colour in the refracted direction (only the mirror one on
+/// depth < s.max_depth, add R times the color in the mirror direction and
+/// 1 - R times the color in the refracted direction (only the mirror one on
 /// total internal reflection), R = schlick_reflectance; a ray that hits a
 /// dielectric from the inside (hit.front_face false) brings back
 /// beer_attenuation(a, t |d|) of all it sees there. Mirrors and the recursion
@@ -47,7 +47,7 @@ template <class Accelerator>
 color ray_color_glass(const scene& s, const Accelerator& accel, const ray& r, int depth = 0,
                       const shading_options& options = {})
 {
-    // RT_EXERCISE_BEGIN(stage09: ray colour with glass; repeats stage07)
+    // RT_EXERCISE_BEGIN(stage09: ray color with glass; repeats stage07)
     // Hint: start from your stage 07 ray_color and call ray_color_glass where it
     //   called itself, and let a mirror reflect along mirror_direction(m, r.direction,
     //   hit.normal, options) (glossy.hpp: reflect, blurred in stage 10); then add the

@@ -1,9 +1,11 @@
-// encoded_output.hpp - images written through stage 08's colour pipeline
+// encoded_output.hpp - images written through stage 08's color pipeline
 // (encoding.hpp: exposure, tone map, transfer function, quantisation), in the
 // formats of image_io.hpp, and the pipeline each kind of render is stored with.
+// The early stages' plain path (clamp, plain gamma) keeps the names without
+// "_encoded" (image_io.hpp): the two give different bytes, so they differ in name.
 //
-//     rt::save_image("out.png", pixels, rt::encoding{});   // sRGB, clamp tone map
-//     rt::save_image("depth.png", pixels, rt::output_encoding(rt::aov_kind::depth, rt::encoding{}, pixels));
+//     rt::save_image_encoded("out.png", pixels, rt::encoding{});   // sRGB, clamp tone map
+//     rt::save_image_encoded("depth.png", pixels, rt::output_encoding(rt::aov_kind::depth, rt::encoding{}, pixels));
 #pragma once
 
 #include <algorithm>
@@ -23,12 +25,12 @@
 
 namespace rt {
 
-/// Binary PPM of the image through the colour pipeline (encoding.hpp). The
+/// Binary PPM of the image through the color pipeline (encoding.hpp). The
 /// file is written by stage 02's write_ppm (image_io.hpp), the one PPM writer:
 /// it is given the pipeline's bytes b as the levels b / 255 with gamma 1, and
 /// stores each as quantize(b / 255) = b again (the level is a byte level, so
 /// rounding to the nearest one gives it back exactly).
-inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
+inline void write_ppm_encoded(std::ostream& out, const image& img, const encoding& enc)
 {
     const std::vector<std::uint8_t> bytes = encode_image(img, enc);
     image levels(img.width, img.height);
@@ -38,20 +40,20 @@ inline void write_ppm(std::ostream& out, const image& img, const encoding& enc)
     write_ppm(out, levels, 1.0f);
 }
 
-/// What save_image(path, img, enc) writes, as an output_file; `img` must outlive the write.
-inline output_file image_file(const std::filesystem::path& path, const image& img, const encoding& enc)
+/// What save_image_encoded(path, img, enc) writes, as an output_file; `img` must outlive the write.
+inline output_file image_file_encoded(const std::filesystem::path& path, const image& img, const encoding& enc)
 {
     const image* pixels = &img;
     return detail::image_file_by_extension(
-        path, img, [pixels, enc](std::ostream& out) { write_ppm(out, *pixels, enc); },
+        path, img, [pixels, enc](std::ostream& out) { write_ppm_encoded(out, *pixels, enc); },
         [pixels, enc] { return encode_image(*pixels, enc); });
 }
 
-/// Writes the image to `path`, atomically: .png and .ppm through the colour
+/// Writes the image to `path`, atomically: .png and .ppm through the color
 /// pipeline `enc` (exposure, tone map, transfer, quantisation), .pfm linear and exact.
-inline void save_image(const std::filesystem::path& path, const image& img, const encoding& enc)
+inline void save_image_encoded(const std::filesystem::path& path, const image& img, const encoding& enc)
 {
-    const output_file file = image_file(path, img, enc);
+    const output_file file = image_file_encoded(path, img, enc);
     write_atomically(file.target, file.write);
 }
 
@@ -62,7 +64,7 @@ inline void save_image(const std::filesystem::path& path, const image& img, cons
 /// image's own farthest hit: 0 (black) at the eye, 255 at the farthest point.
 inline encoding output_encoding(aov_kind aov, const encoding& shaded, const image& pixels)
 {
-    if (aov == aov_kind::none)
+    if (aov == aov_kind::shaded)
         return shaded;
     encoding data{0.0f, tonemap_kind::clamp, transfer_kind::gamma, 1.0f};
     if (aov == aov_kind::depth) {

@@ -1,4 +1,4 @@
-// encoding.hpp - the colour pipeline: linear radiance to stored bytes (stage 08).
+// encoding.hpp - the color pipeline: linear radiance to stored bytes (stage 08).
 //
 // The course: "RGB floats internally, RGB bytes stored". Each channel of each
 // pixel goes, in this order, through
@@ -32,7 +32,7 @@ inline float encode_channel(float linear, const encoding& enc)
     return enc.transfer == transfer_kind::srgb ? srgb_encode(mapped) : gamma_encode(mapped, enc.gamma);
 }
 
-/// One linear colour to its three stored bytes.
+/// One linear color to its three stored bytes.
 inline std::array<std::uint8_t, 3> encode_color(const color& linear, const encoding& enc)
 {
     return {quantize(encode_channel(linear.r, enc)), quantize(encode_channel(linear.g, enc)),

@@ -15,6 +15,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// One value of an enum and the word that names it.
 template <class Enum>
 struct enum_name {
@@ -52,5 +54,7 @@ std::string names_listed(const enum_name<Enum> (&table)[N])
         list += (list.empty() ? "" : ", ") + std::string(entry.name);
     return list;
 }
+
+} // namespace detail
 
 } // namespace rt

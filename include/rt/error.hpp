@@ -21,6 +21,8 @@ struct source_location {
     int column = 0;
 };
 
+namespace detail {
+
 /// A file name as a message shows it: control characters become '?', and a
 /// path longer than 160 bytes keeps its last 160 or fewer (the file name is at
 /// the end; the cut falls between UTF-8 characters), so that a message stays one
@@ -38,10 +40,12 @@ inline std::string shown_path(const std::string& path)
     return shown;
 }
 
+} // namespace detail
+
 /// "file:line:col" (or "file:line", or "file"), the prefix of every message.
 inline std::string to_string(const source_location& where)
 {
-    std::string text = where.file.empty() ? std::string("<input>") : shown_path(where.file);
+    std::string text = where.file.empty() ? std::string("<input>") : detail::shown_path(where.file);
     if (where.line > 0) {
         text += ':' + std::to_string(where.line);
         if (where.column > 0)
@@ -49,6 +53,8 @@ inline std::string to_string(const source_location& where)
     }
     return text;
 }
+
+namespace detail {
 
 /// Text from an input (a name, a path) made safe to print in a one-line
 /// message: bytes that are not printable ASCII become '?', and anything past
@@ -60,6 +66,8 @@ inline std::string printable(const std::string& text, std::size_t limit = 200)
         shown += (c >= 32 && c < 127) ? c : '?';
     return text.size() > limit ? shown + "..." : shown;
 }
+
+} // namespace detail
 
 /// A bad input or a failed operation: the message is one line, ready to print.
 class error : public std::runtime_error {
@@ -75,8 +83,8 @@ private:
 };
 
 /// The standard message: "file:line:col: expected X, found Y; hint".
-inline error parse_error(const source_location& where, const std::string& expected,
-                         const std::string& found, const std::string& hint = {})
+inline error make_error(const source_location& where, const std::string& expected,
+                        const std::string& found, const std::string& hint = {})
 {
     std::string message = "expected " + expected + ", found " + found;
     if (!hint.empty())

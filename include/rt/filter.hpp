@@ -122,13 +122,13 @@ inline int filter_reach(const filter& f)
 }
 
 /// The names of the filters; the first is the default.
-inline constexpr enum_name<filter_kind> filter_names[] = {
+inline constexpr detail::enum_name<filter_kind> filter_names[] = {
     {filter_kind::box, "box"}, {filter_kind::tent, "tent"}, {filter_kind::gaussian, "gaussian"},
     {filter_kind::mitchell, "mitchell"}};
 
 /// The filter a name means ("box", "tent", "gaussian", "mitchell"), or nothing.
-inline std::optional<filter_kind> filter_from_name(const std::string& name) { return value_named(filter_names, name); }
+inline std::optional<filter_kind> filter_from_name(const std::string& name) { return detail::value_named(filter_names, name); }
 
-inline const char* name_of(filter_kind kind) { return name_in(filter_names, kind); }
+inline const char* name_of(filter_kind kind) { return detail::name_in(filter_names, kind); }
 
 } // namespace rt

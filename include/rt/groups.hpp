@@ -124,7 +124,7 @@ inline bool hit_group_item(const scene& s, const group_item& item, const ray& r,
     const shape& target = s.shapes[item.shape];
     bool found = false;
     if (const mesh* m = std::get_if<mesh>(&target))
-        found = hit_mesh_triangle(*m, item.primitive, r, tmin, tmax, rec);
+        found = detail::hit_mesh_triangle(*m, item.primitive, r, tmin, tmax, rec);
     else
         found = hit_shape(target, r, tmin, tmax, rec);
     if (found) {

@@ -3,7 +3,7 @@
 // point_error is the box of rounding error around `point` that the exact
 // surface point lies in (Physically Based Rendering, 3rd ed., sec. 3.9.4);
 // spawn.hpp offsets new rays past it so they cannot hit the same surface again.
-// The scene-level intersection (intersect.hpp) fills it; 0 means "not known".
+// The scene-level intersection (accelerator.hpp) fills it; 0 means "not known".
 #pragma once
 
 #include <cstdint>

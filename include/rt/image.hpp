@@ -14,7 +14,7 @@ namespace rt {
 struct image {
     int width = 0;
     int height = 0;
-    std::vector<color> pixels; ///< width * height colours, top row first
+    std::vector<color> pixels; ///< width * height colors, top row first
 
     image() = default;
     image(int w, int h, color fill = color(0))

@@ -4,9 +4,10 @@
 //  - the plain one of the early stages (to_byte, to_rgb8, write_ppm with a
 //    gamma): clamp each linear channel to [0, 1], encode with a plain gamma,
 //    quantise to 8 bits. It needs nothing from stage 08, so stage programs 02-07
-//    can save images before the student has written the colour pipeline.
-//  - the colour pipeline of stage 08 (encoded_output.hpp and encoding.hpp: exposure, tone map, sRGB or
-//    gamma, quantisation), selected by passing an rt::encoding.
+//    can save images before the student has written the color pipeline.
+//  - the color pipeline of stage 08 (encoded_output.hpp and encoding.hpp: exposure, tone map, sRGB or
+//    gamma, quantisation): write_ppm_encoded, image_file_encoded and
+//    save_image_encoded, which take an rt::encoding.
 // PFM keeps the linear floats exactly (no exposure, no tone map), for depth and
 // normal buffers, for comparisons and for merging. Every writer goes through
 // write_atomically (atomic_file.hpp).
@@ -77,7 +78,7 @@ inline std::vector<std::uint8_t> encode_png(int width, int height, const std::ve
     return png;
 }
 
-/// Portable float map (PFM, "PF" colour): the header "PF\n<w> <h>\n-1\n" (a
+/// Portable float map (PFM, "PF" color): the header "PF\n<w> <h>\n-1\n" (a
 /// negative scale means little-endian), then 3 floats per pixel, BOTTOM row first.
 inline void write_pfm(std::ostream& out, const image& img)
 {
@@ -99,7 +100,7 @@ inline void write_pfm(std::ostream& out, const image& img)
     }
 }
 
-/// Reads a colour PFM written by write_pfm (or any little- or big-endian "PF").
+/// Reads a color PFM written by write_pfm (or any little- or big-endian "PF").
 inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
 {
     std::string magic;
@@ -107,8 +108,8 @@ inline image read_pfm(std::istream& in, const std::string& name = "<pfm>")
     double scale = 0;
     if (!(in >> magic >> width >> height >> scale) || magic != "PF" || width <= 0 || height <= 0 ||
         scale == 0 || std::int64_t(width) * height > (std::int64_t(1) << 28))
-        throw parse_error(source_location{name, 1, 1}, "a colour PFM header 'PF width height scale'",
-                          "something else", "is this a PFM file written by rt?");
+        throw make_error(source_location{name, 1, 1}, "a color PFM header 'PF width height scale'",
+                         "something else", "is this a PFM file written by rt?");
     in.get(); // the single whitespace byte after the scale
     const bool little = scale < 0;
     // Read the pixel bytes before allocating the image, in chunks, so that a
@@ -204,7 +205,7 @@ inline output_file image_file(const std::filesystem::path& path, const image& im
 
 /// Writes the image to `path`, atomically, in the format its extension names:
 /// .png and .ppm (8-bit: clamped, plain gamma, see to_byte) or .pfm (linear floats).
-/// This is the early stages' writer; stage 08 passes an rt::encoding (encoded_output.hpp).
+/// This is the early stages' writer; stage 08's is save_image_encoded (encoded_output.hpp).
 inline void save_image(const std::filesystem::path& path, const image& img, float gamma = 2.2f)
 {
     const output_file file = image_file(path, img, gamma);

@@ -17,6 +17,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// The nine corner coordinates of triangle i (a.x a.y a.z b.x ... c.z), as
 /// intersect_watertight takes them.
 inline void triangle_corners(const mesh& m, std::size_t i, real v[9])
@@ -45,8 +47,10 @@ inline bool hit_mesh_triangle(const mesh& m, std::size_t i, const ray& r, real t
     return true;
 }
 
+} // namespace detail
+
 /// The closest hit in [tmin, tmax] over all triangles of `m`, by testing each in
-/// turn (the BVH of intersect.hpp does the same work faster). When two
+/// turn (the BVH of accelerator.hpp does the same work faster). When two
 /// triangles give the same t, the later one is kept, as the scene's flat list
 /// does.
 inline bool hit_mesh(const mesh& m, const ray& r, real tmin, real tmax, hit_record& rec)
@@ -58,7 +62,7 @@ inline bool hit_mesh(const mesh& m, const ray& r, real tmin, real tmax, hit_reco
     real closest = tmax;
     for (std::size_t i = 0; i < m.triangles.size(); ++i) {
         real v[9];
-        triangle_corners(m, i, v);
+        detail::triangle_corners(m, i, v);
         triangle_hit h;
         if (intersect_watertight(w, v, tmin, closest, h)) {
             found = true;

@@ -3,7 +3,7 @@
 // An MTL file ("Material Library Files (.mtl)", Wavefront's Advanced
 // Visualizer documentation) is read here, line by line with obj_line's checks:
 //   newmtl name        a material; the statements below it describe it
-//   Ka/Kd/Ks r [g b]   ambient, diffuse and specular colours ("Kd r" is r r r)
+//   Ka/Kd/Ks r [g b]   ambient, diffuse and specular colors ("Kd r" is r r r)
 //   Ns exponent        the Phong exponent      illum model   0 to 10
 // everything else (Ke, Ni, d, maps) is skipped, its numbers checked. The
 // materials are then handed to tinyobjloader by name (mtl_names_reader), so it
@@ -60,19 +60,19 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
             entries.push_back(entry);
             return;
         }
-        const bool colour = keyword == "Ka" || keyword == "Kd" || keyword == "Ks";
-        const bool known = colour || keyword == "Ns" || keyword == "illum";
+        const bool is_color = keyword == "Ka" || keyword == "Kd" || keyword == "Ks";
+        const bool known = is_color || keyword == "Ns" || keyword == "illum";
         if (!known) { // Ke, Ni, d, Tr, maps ...: not used by rt, but their numbers must fit a float too
             line.check_number_words(false);
             return;
         }
         if (entries.empty())
-            throw parse_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
-                              "every material starts with newmtl");
+            throw make_error(keyword_at, "'newmtl name' before '" + printable(keyword, 24) + "'", "'" + printable(keyword, 24) + "' first",
+                             "every material starts with newmtl");
         mtl_entry& entry = entries.back();
-        if (colour) {
+        if (is_color) {
             if (!line.done() && !line.number_follows())
-                throw line.unexpected("an RGB colour for " + keyword, "rt reads 'K? r g b' (not spectral or xyz)");
+                throw line.unexpected("an RGB color for " + keyword, "rt reads 'K? r g b' (not spectral or xyz)");
             color c;
             for (int channel = 0; channel < 3; ++channel) {
                 if (channel == 1 && line.done()) { // "Kd r" means r r r
@@ -82,8 +82,8 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
                 const source_location at = line.here();
                 const real value = line.number(keyword + " " + "rgb"[channel]);
                 if (value < 0)
-                    throw parse_error(at, "a non-negative " + keyword, std::to_string(value),
-                                      "colours cannot be negative");
+                    throw make_error(at, "a non-negative " + keyword, std::to_string(value),
+                                     "colors cannot be negative");
                 c[channel] = float(value);
             }
             if (keyword == "Ka") {
@@ -98,13 +98,13 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
             const source_location at = line.here();
             entry.value.p = line.number("the Phong exponent Ns");
             if (entry.value.p < 0)
-                throw parse_error(at, "a non-negative Ns", std::to_string(entry.value.p));
+                throw make_error(at, "a non-negative Ns", std::to_string(entry.value.p));
             entry.has_ns = true;
         } else {
             const source_location at = line.here();
             const real model = line.number("the illumination model");
             if (!(model >= 0 && model <= 10 && model == std::floor(model)))
-                throw parse_error(at, "an illumination model 0 to 10", std::to_string(model));
+                throw make_error(at, "an illumination model 0 to 10", std::to_string(model));
             entry.illum = int(model);
         }
         if (!line.done())

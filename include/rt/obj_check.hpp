@@ -38,8 +38,8 @@ struct obj_limits {
     std::size_t max_triangles = std::size_t(1) << 26;  ///< 67 million
     std::uintmax_t max_bytes = std::uintmax_t(1) << 32; ///< 4 GiB of OBJ text
     /// corners of one face: tinyobjloader's ear clipping takes time in the
-    /// square of them (measured: 7 ms for 1000, 0.14 s for 4000, so a
-    /// one-line face of a million corners would take hours)
+    /// square of them, so a one-line face of a million corners would take
+    /// hours (docs/architecture.md, "Figures behind the comments")
     std::size_t max_face_corners = 1024;
     /// The largest coordinate magnitude a vertex may have: the intersection
     /// tests multiply coordinate differences (up to 2e18 here), and the
@@ -73,7 +73,7 @@ public:
              const std::string& hint)
     {
         if (limits_.strict)
-            throw parse_error(where, expected, found, hint + " (a warning without --strict)");
+            throw make_error(where, expected, found, hint + " (a warning without --strict)");
         entry& e = entries_[k];
         if (e.count++ == 0) {
             e.message = to_string(where) + ": warning: expected " + expected + ", found " + found;
@@ -139,14 +139,14 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 if (std::fabs(double(p[axis])) > limits.max_coordinate) {
                     std::ostringstream limit;
                     limit << limits.max_coordinate;
-                    throw parse_error(at, std::string("a vertex ") + "xyz"[axis] + " within +-" + limit.str(),
-                                      "a larger one",
-                                      "float arithmetic cannot trace geometry this large; use smaller units "
-                                      "(obj_limits::max_coordinate)");
+                    throw make_error(at, std::string("a vertex ") + "xyz"[axis] + " within +-" + limit.str(),
+                                     "a larger one",
+                                     "float arithmetic cannot trace geometry this large; use smaller units "
+                                     "(obj_limits::max_coordinate)");
                 }
             }
             while (!line.done())
-                line.number("a vertex's extra value (w or colour)");
+                line.number("a vertex's extra value (w or color)");
             out.positions.push_back(p);
         } else if (keyword == "vn") {
             line.number("the normal x");
@@ -179,12 +179,12 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
                 for (int k = 0; k < 3; ++k) {
                     const long index = c.index[k];
                     if (index < 0 && long(defined[k]) + index < 0)
-                        throw parse_error(line.at(c.start[k]),
-                                          std::string("a relative ") + kinds[k] + " index from -1 to -" +
-                                              std::to_string(defined[k]),
-                                          std::to_string(index),
-                                          "a negative index counts back from the latest '" +
-                                              std::string(k == 0 ? "v" : k == 1 ? "vt" : "vn") + "' line");
+                        throw make_error(line.at(c.start[k]),
+                                         std::string("a relative ") + kinds[k] + " index from -1 to -" +
+                                             std::to_string(defined[k]),
+                                         std::to_string(index),
+                                         "a negative index counts back from the latest '" +
+                                             std::string(k == 0 ? "v" : k == 1 ? "vt" : "vn") + "' line");
                     if (index > out.largest[k]) {
                         out.largest[k] = index;
                         out.largest_at[k] = line.at(c.start[k]);
@@ -193,20 +193,20 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
             }
             if (keyword == "f") {
                 if (corners < 3)
-                    throw parse_error(keyword_at, "a face of at least 3 corners", std::to_string(corners),
-                                      "'f' lists three or more vertex indices");
+                    throw make_error(keyword_at, "a face of at least 3 corners", std::to_string(corners),
+                                     "'f' lists three or more vertex indices");
                 if (std::size_t(corners) > limits.max_face_corners)
-                    throw parse_error(keyword_at, "a face of at most " + std::to_string(limits.max_face_corners) + " corners",
-                                      std::to_string(corners),
-                                      "raise obj_limits::max_face_corners (load_options::obj for a scene)");
+                    throw make_error(keyword_at, "a face of at most " + std::to_string(limits.max_face_corners) + " corners",
+                                     std::to_string(corners),
+                                     "raise obj_limits::max_face_corners (load_options::obj for a scene)");
                 ++out.polygons;
                 out.triangles += std::size_t(corners - 2);
                 out.face_corners.push_back(std::uint32_t(corners));
                 if (corners > 3)
                     out.polygon_at.emplace_back(keyword_at.line, keyword_at.column);
                 if (out.triangles > limits.max_triangles)
-                    throw parse_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
-                                      "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
+                    throw make_error(keyword_at, "at most " + std::to_string(limits.max_triangles) + " triangles",
+                                     "more", "raise obj_limits::max_triangles (load_options::obj for a scene)");
             }
         } else if (keyword == "vw") {
             // tinyobjloader's skin weights "vw vertex joint weight joint weight ...":
@@ -292,10 +292,10 @@ inline obj_check check_obj(const std::string& text, const std::string& name, con
     const char* lines[3] = {"v", "vt", "vn"};
     for (int k = 0; k < 3; ++k)
         if (out.largest[k] > long(counts[k]))
-            throw parse_error(out.largest_at[k],
-                              std::string("a ") + kinds[k] + " index from 1 to " + std::to_string(counts[k]),
-                              std::to_string(out.largest[k]),
-                              "the file has " + std::to_string(counts[k]) + " '" + lines[k] + "' lines");
+            throw make_error(out.largest_at[k],
+                             std::string("a ") + kinds[k] + " index from 1 to " + std::to_string(counts[k]),
+                             std::to_string(out.largest[k]),
+                             "the file has " + std::to_string(counts[k]) + " '" + lines[k] + "' lines");
     return out;
 }
 

@@ -155,9 +155,9 @@ public:
                 ++q;
         }
         if (claimed > held)
-            throw parse_error(at, "a tag with at most " + std::to_string(held) + " value(s), as many as follow",
-                              "one that claims " + std::to_string(claimed),
-                              "'t name ints/reals/strings value ...' counts the values on its line");
+            throw make_error(at, "a tag with at most " + std::to_string(held) + " value(s), as many as follow",
+                             "one that claims " + std::to_string(claimed),
+                             "'t name ints/reals/strings value ...' counts the values on its line");
         check_number_words(true);
     }
 
@@ -207,25 +207,25 @@ public:
             if (slash != p) {
                 const auto [end, status] = std::from_chars(p, slash, c.index[part]);
                 if (status != std::errc() || end != slash)
-                    throw parse_error(at(p), "a whole-number index", "'" + printable(std::string(p, slash), 24) + "'", hint);
+                    throw make_error(at(p), "a whole-number index", "'" + printable(std::string(p, slash), 24) + "'", hint);
                 if (c.index[part] == 0)
-                    throw parse_error(at(p), "an index other than 0 (OBJ counts from 1)",
-                                      "'" + printable(std::string(p, slash), 24) + "'", hint);
+                    throw make_error(at(p), "an index other than 0 (OBJ counts from 1)",
+                                     "'" + printable(std::string(p, slash), 24) + "'", hint);
             } else if (part == 0) {
-                throw parse_error(at(p), "a vertex index", "'" + printable(std::string(p, stop), 24) + "'", hint);
+                throw make_error(at(p), "a vertex index", "'" + printable(std::string(p, stop), 24) + "'", hint);
             } else if (slash == stop && part == 2 && c.index[1] != 0) {
                 c.empty_normal = p - 1; // "1/2/": read as "1/2"
                 break;
             } else if (slash == stop) {
                 // "1/" or "1//": a '/' promises an index after it
-                throw parse_error(at(p), part == 1 ? "a texture coordinate index after '/'" : "a normal index after the second '/'",
-                                  "the end of the corner '" + printable(std::string(next_, stop), 24) + "'", hint);
+                throw make_error(at(p), part == 1 ? "a texture coordinate index after '/'" : "a normal index after the second '/'",
+                                 "the end of the corner '" + printable(std::string(next_, stop), 24) + "'", hint);
             }
             if (slash == stop)
                 break;
             p = slash + 1;
             if (part == 2)
-                throw parse_error(at(slash), "at most three indices in a corner", "another '/'", hint);
+                throw make_error(at(slash), "at most three indices in a corner", "another '/'", hint);
         }
         next_ = stop;
         skip_blanks();

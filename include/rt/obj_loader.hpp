@@ -2,7 +2,7 @@
 //
 // What is read (the formats of Wavefront's Advanced Visualizer documentation,
 // "Object Files (.obj)" and "Material Library Files (.mtl)"):
-//   v x y z            a position (extra numbers, such as vertex colours, are allowed and ignored)
+//   v x y z            a position (extra numbers, such as vertex colors, are allowed and ignored)
 //   vn x y z           a normal          vt u [v [w]]   a texture coordinate
 //   f v[/vt][/vn] ...  a polygon of 3 or more corners; indices count from 1 in
 //                      order of appearance, a negative index counts back from the
@@ -52,7 +52,7 @@
 //
 // The mesh stores only what the file provides: normals (texture coordinates)
 // only when the faces refer to them. Zero-area triangles are dropped and
-// counted in mesh::dropped_degenerate. MTL colours map to rt::material: Ka ka
+// counted in mesh::dropped_degenerate. MTL colors map to rt::material: Ka ka
 // (kd when absent, as in scene files), Kd kd, Ks ks, Ns p, and for the
 // illumination models "reflection on, ray trace on" (illum 3 and 5) km = Ks.
 // Names (newmtl, usemtl) are one word, as tinyobjloader reads them.

@@ -18,6 +18,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// What errno `code` means for a file, as the end of a message ("permission denied").
 inline std::string reason_of(int code)
 {
@@ -60,6 +62,8 @@ inline std::size_t name_max(const std::filesystem::path& folder)
     return detail::longest_name(folder);
 }
 
+} // namespace detail
+
 /// Throws rt::error with the reason unless `path` can be opened for reading.
 /// `what` names the file as a message says it ("a scene file", "an OBJ file").
 /// A folder, a device, a pipe or a socket pass: the loaders refuse those with
@@ -82,13 +86,13 @@ inline void check_readable(const std::filesystem::path& path, const std::string&
         throw error(at, "expected " + what + ", found a symbolic link loop; check the links on the path");
     case ENAMETOOLONG:
         throw error(at, "expected " + what + ", found a path too long for the system (a name over " +
-                            std::to_string(name_max(".")) + " " + detail::length_unit + ", or the path over " +
+                            std::to_string(detail::name_max(".")) + " " + detail::length_unit + ", or the path over " +
                             std::to_string(detail::longest_path()) + "); shorten it");
     case ENOTDIR:
         throw error(at, "expected " + what + ", found a path that goes through a file as if it were a folder; "
                                              "check the path");
     default:
-        throw error(at, "expected " + what + ", found one that cannot be examined (" + reason_of(status.error) + ")");
+        throw error(at, "expected " + what + ", found one that cannot be examined (" + detail::reason_of(status.error) + ")");
     }
     if (!status.regular)
         return; // a folder or a special file: the loaders say what they expected
@@ -96,7 +100,7 @@ inline void check_readable(const std::filesystem::path& path, const std::string&
     if (code != 0)
         throw error(at, "expected " + what + " that can be read, found " +
                             (code == EACCES || code == EPERM ? std::string("one without read permission for this user")
-                                                             : "one that cannot be opened (" + reason_of(code) + ")") +
+                                                             : "one that cannot be opened (" + detail::reason_of(code) + ")") +
                             "; check its permissions");
 }
 
@@ -106,6 +110,8 @@ inline std::uint64_t memory_limit()
 {
     return detail::process_memory_limit();
 }
+
+namespace detail {
 
 /// The process's memory in use now, in bytes, or 0 where it cannot be read:
 /// on Linux its address space (the first field of /proc/self/statm, proc(5)),
@@ -121,6 +127,8 @@ inline std::string mebibytes(std::uint64_t bytes)
     return std::to_string((bytes + (std::uint64_t(1) << 20) - 1) >> 20) + " MiB";
 }
 
+} // namespace detail
+
 /// Throws rt::error, before any work, when `bytes` more (what `what` will
 /// allocate at least) cannot fit under the memory limit (ulimit -v) beside what
 /// the process uses already. Without a limit it passes: an allocation that
@@ -130,10 +138,10 @@ inline void check_memory_for(std::uint64_t bytes, const std::string& what)
     const std::uint64_t limit = memory_limit();
     if (limit == 0)
         return;
-    const std::uint64_t used = memory_in_use();
+    const std::uint64_t used = detail::memory_in_use();
     if (bytes > limit || used + bytes > limit)
-        throw error("expected " + what + " to fit in memory, found it needs at least " + mebibytes(bytes) +
-                    " while the memory limit (ulimit -v) is " + mebibytes(limit) + " and " + mebibytes(used) +
+        throw error("expected " + what + " to fit in memory, found it needs at least " + detail::mebibytes(bytes) +
+                    " while the memory limit (ulimit -v) is " + detail::mebibytes(limit) + " and " + detail::mebibytes(used) +
                     " are in use; make the image smaller, or render it in pieces with --crop");
 }
 

@@ -1,4 +1,4 @@
-// pixel_sampling.hpp - several rays per pixel, and one colour from them (stage 02).
+// pixel_sampling.hpp - several rays per pixel, and one color from them (stage 02).
 //
 // The course: "Create image plane - Sample positions on image plane - Create
 // ray for each position", and "Camera and sampling: simple sampling and

@@ -12,7 +12,7 @@
 //     if (code == 0) code = file.sync();                  // on the disk before the rename
 //     if (const int closed = file.close(); code == 0) code = closed;
 //     if (code == 0) code = rt::detail::replace_file(temporary, target);
-//     if (code != 0) ... rt::reason_of(code) says why ...
+//     if (code != 0) ... rt::detail::reason_of(code) says why ...
 //
 // Three branches, each complete: POSIX (IEEE Std 1003.1-2017: Linux, macOS),
 // Windows (_WIN32: the Win32 API as Microsoft Learn documents it, through its

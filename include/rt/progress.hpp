@@ -21,6 +21,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// True when stderr is a terminal (where a progress bar can redraw itself).
 inline bool stderr_is_terminal()
 {
@@ -79,29 +81,31 @@ inline std::string progress_line(const render_progress& p, int bar_width = 24)
     return out.str();
 }
 
+} // namespace detail
+
 /// "rendered 640x360 at 16 spp on 2 threads: 3.69 Mrays in 2.31 s (1.60 Mrays/s)"
 inline std::string summary_line(const render_stats& s)
 {
     const double rays = double(s.camera_rays + s.extra_rays);
     std::ostringstream out;
     out << "rendered " << s.width << 'x' << s.height << " at " << s.samples_per_pixel << " spp on " << s.threads
-        << (s.threads == 1 ? " thread: " : " threads: ") << format_count(rays) << "rays in "
-        << format_duration(s.seconds);
+        << (s.threads == 1 ? " thread: " : " threads: ") << detail::format_count(rays) << "rays in "
+        << detail::format_duration(s.seconds);
     if (s.seconds > 0)
-        out << " (" << format_count(rays / s.seconds) << "rays/s)";
+        out << " (" << detail::format_count(rays / s.seconds) << "rays/s)";
     return out.str();
 }
 
 /// Redraws progress_line on one terminal line; does nothing when disabled.
 class progress_bar {
 public:
-    explicit progress_bar(std::ostream& out, bool enabled = stderr_is_terminal()) : out_(&out), enabled_(enabled) {}
+    explicit progress_bar(std::ostream& out, bool enabled = detail::stderr_is_terminal()) : out_(&out), enabled_(enabled) {}
 
     void update(const render_progress& p)
     {
         if (!enabled_)
             return;
-        const std::string line = progress_line(p);
+        const std::string line = detail::progress_line(p);
         const std::size_t pad = shown_ > line.size() ? shown_ - line.size() : 0;
         *out_ << '\r' << line << std::string(pad, ' ') << std::flush;
         shown_ = line.size();

@@ -1,8 +1,8 @@
 // radiance.hpp - what rt::render (renderer.hpp) needs from a scene: the
-// camera's rays, and the colour each ray brings back (the shaded colour of
+// camera's rays, and the color each ray brings back (the shaded color of
 // stages 05-07, 09 and 10, or a debug image, aov.hpp).
 //
-//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
+//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::shaded); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
 #pragma once
@@ -35,7 +35,7 @@ namespace rt {
 
 /// A ray source for rt::render: film position in pixels -> ray.
 using ray_source = std::function<ray(real, real)>;
-/// A radiance function for rt::render: the colour a ray brings back.
+/// A radiance function for rt::render: the color a ray brings back.
 using radiance_function = std::function<color(const ray&, sample_context&)>;
 
 /// The camera's rays for a full image of nx x ny pixels (camera.hpp).
@@ -82,9 +82,9 @@ struct counting_accelerator {
 } // namespace RT_BVH_ACCELERATOR_ABI
 
 /// What each sample computes, for scene `s` whose accelerator (stage 04) is
-/// `accel`: the shaded colour of stages 05-07 (rt::ray_color; rt::ray_color_glass,
+/// `accel`: the shaded color of stages 05-07 (rt::ray_color; rt::ray_color_glass,
 /// stage 09, when a material of `s` is a dielectric or a glossy mirror) or a
-/// debug image. The shaded colour uses the sample's random numbers (stage 10):
+/// debug image. The shaded color uses the sample's random numbers (stage 10):
 /// the thin lens (s.lens, a perspective camera) moves the camera ray's start
 /// over the lens, area lights are seen from a random point, glossy mirrors blur.
 /// The function refers to `s` and `accel` (it shares ownership of `accel`;
@@ -106,7 +106,7 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
             return accel->closest_hit(r, 0, unbounded, hit) ? color(float(hit.t * glm::length(r.direction))) : color(0.0f);
         };
     case aov_kind::normal:
-        // the unit shading normal mapped to colour, (n + 1) / 2; black where the ray misses
+        // the unit shading normal mapped to color, (n + 1) / 2; black where the ray misses
         return [accel, unbounded](const ray& r, sample_context&) {
             hit_record hit;
             return accel->closest_hit(r, 0, unbounded, hit) ? color((hit.normal + vec3(1)) * real(0.5)) : color(0.0f);
@@ -116,10 +116,10 @@ inline radiance_function make_radiance(const scene& s, std::shared_ptr<const acc
             hit_record hit;
             return accel->closest_hit(r, 0, unbounded, hit) ? color(hit.point) : color(0.0f);
         };
-    case aov_kind::none: break;
+    case aov_kind::shaded: break;
     }
     const scene* shaded = &s;
-    // stage 07's ray colour, or stage 09's where the scene has glass or a glossy
+    // stage 07's ray color, or stage 09's where the scene has glass or a glossy
     // mirror (at the time of this call)
     const bool glass = has_dielectric(s) || has_glossy(s);
     return [accel, shaded, glass](const ray& pinhole, sample_context& context) {

@@ -25,6 +25,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// SplitMix64's finaliser: a bijection of 64-bit words that mixes every input bit into every output bit.
 inline std::uint64_t mix64(std::uint64_t z)
 {
@@ -32,6 +34,8 @@ inline std::uint64_t mix64(std::uint64_t z)
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     return z ^ (z >> 31);
 }
+
+} // namespace detail
 
 /// PCG32 (O'Neill 2014): 64 bits of state, 32-bit outputs, period 2^64 on each of 2^63 streams.
 class pcg32 {
@@ -83,7 +87,7 @@ private:
 inline pcg32 seeded_generator(std::uint64_t seed, std::uint64_t pixel_index, std::uint64_t sample_index,
                               std::uint64_t stream)
 {
-    const std::uint64_t state = mix64(mix64(mix64(seed) ^ pixel_index) ^ (sample_index * 0x9e3779b97f4a7c15ull));
+    const std::uint64_t state = detail::mix64(detail::mix64(detail::mix64(seed) ^ pixel_index) ^ (sample_index * 0x9e3779b97f4a7c15ull));
     return pcg32(state, stream);
 }
 

@@ -13,10 +13,10 @@
 
 namespace rt {
 
-/// The colour that shows a direction: (d/|d| + 1) / 2 per channel.
+/// The color that shows a direction: (d/|d| + 1) / 2 per channel.
 inline color direction_to_color(const vec3& d)
 {
-    // RT_EXERCISE_BEGIN(stage02: direction as colour)
+    // RT_EXERCISE_BEGIN(stage02: direction as color)
     const vec3 unit = glm::normalize(d);
     return color((unit + vec3(1)) * real(0.5));
     // RT_EXERCISE_END

@@ -1,7 +1,7 @@
-// raytracer.hpp - the colour seen along one ray: shading, shadows, mirrors (stage 07).
+// raytracer.hpp - the color seen along one ray: shading, shadows, mirrors (stage 07).
 //
 // Fundamentals of Computer Graphics, 4th ed., sec. 4.8 (ideal specular
-// reflection): a mirror adds the colour seen in the reflected direction,
+// reflection): a mirror adds the color seen in the reflected direction,
 //     L += km raycolor(p, r),   r = d - 2 (d.n) n,
 // recursively, up to a maximum depth; rays that hit nothing see the background.
 // The course's "Ray tracer: single ray" class.
@@ -27,14 +27,14 @@ inline vec3 reflect(const vec3& d, const vec3& n)
     // RT_EXERCISE_END
 }
 
-/// The colour seen along ray r in scene s: background on a miss; otherwise the
-/// direct light with shadows, plus km times the colour seen in the mirror
+/// The color seen along ray r in scene s: background on a miss; otherwise the
+/// direct light with shadows, plus km times the color seen in the mirror
 /// direction while depth < s.max_depth. `accel` is built from s (rt::accelerator).
 template <class Accelerator>
 color ray_color(const scene& s, const Accelerator& accel, const ray& r, int depth = 0,
                 const shading_options& options = {})
 {
-    // RT_EXERCISE_BEGIN(stage07: ray colour with mirrors)
+    // RT_EXERCISE_BEGIN(stage07: ray color with mirrors)
     hit_record hit;
     if (!accel.closest_hit(r, real(0), std::numeric_limits<real>::infinity(), hit))
         return s.background;

@@ -1,9 +1,9 @@
 // render_setup.hpp - everything the render commands share between the command
 // line and rt::render, in one include: scene_input.hpp (a scene file or a bare
 // OBJ), aov.hpp (what each sample computes and how it is stored), radiance.hpp
-// (the camera's rays and their colour), camera_text.hpp and
+// (the camera's rays and their color), camera_text.hpp and
 // camera_statement.hpp (the camera as text, both ways), encoded_output.hpp
-// (images through the colour pipeline). Include the one you
+// (images through the color pipeline). Include the one you
 // use: this umbrella pulls in both loaders and the renderer.
 //
 // stage08_output and the interactive viewer (stages/viewer) both build their
@@ -11,10 +11,10 @@
 // stage08_output writes for the same camera and settings:
 //
 //     rt::scene s = rt::load_input("scenes/showcase.scene");
-//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::none); // shaded
+//     const rt::radiance_function radiance = rt::make_radiance(s, rt::aov_kind::shaded); // shaded
 //     const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
 //     rt::render_result out = rt::render(options, rays, radiance);
-//     rt::save_image("out.png", out.pixels, rt::output_encoding(rt::aov_kind::none, rt::encoding{}, out.pixels));
+//     rt::save_image_encoded("out.png", out.pixels, rt::output_encoding(rt::aov_kind::shaded, rt::encoding{}, out.pixels));
 #pragma once
 
 #include "aov.hpp"

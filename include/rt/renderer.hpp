@@ -7,7 +7,7 @@
 //
 // The renderer knows nothing of scenes: it asks the ray source for the ray
 // through the film position (x, y) (pixels from the image's bottom-left corner,
-// as rt::generate_ray takes them) and the radiance function for the colour
+// as rt::generate_ray takes them) and the radiance function for the color
 // that ray brings back. Both are called from several threads at once, so they
 // must not modify shared state (read-only scene data is fine).
 //
@@ -116,7 +116,7 @@ constexpr std::uint64_t integrator_stream = 0x1a7e6a7011ull;
 inline void check_render_options(const render_options& o)
 {
     auto fail = [](const std::string& expected, const std::string& found) {
-        throw parse_error(source_location{"render options"}, expected, found);
+        throw make_error(source_location{"render options"}, expected, found);
     };
     if (o.width < 1 || o.height < 1)
         fail("an image of at least 1x1 pixels", std::to_string(o.width) + "x" + std::to_string(o.height));

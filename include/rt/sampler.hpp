@@ -179,17 +179,17 @@ inline void pixel_samples(sampler_kind kind, int spp, std::uint64_t seed, std::u
 }
 
 /// The names of the samplers; the first is the default.
-inline constexpr enum_name<sampler_kind> sampler_names[] = {
+inline constexpr detail::enum_name<sampler_kind> sampler_names[] = {
     {sampler_kind::center, "center"}, {sampler_kind::grid, "grid"},     {sampler_kind::random, "random"},
     {sampler_kind::jittered, "jittered"}, {sampler_kind::halton, "halton"}};
 
 /// The sampler a name means ("center", "grid", "random", "jittered", "halton"), or nothing.
 inline std::optional<sampler_kind> sampler_from_name(const std::string& name)
 {
-    return value_named(sampler_names, name);
+    return detail::value_named(sampler_names, name);
 }
 
-inline const char* name_of(sampler_kind kind) { return name_in(sampler_names, kind); }
+inline const char* name_of(sampler_kind kind) { return detail::name_in(sampler_names, kind); }
 
 /// The sampler used when none is named: one ray through each pixel centre for
 /// 1 sample per pixel (the image of stages 02-07), jittered otherwise.

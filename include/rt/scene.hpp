@@ -35,7 +35,7 @@ struct scene {
     std::vector<light> lights;
     std::vector<shape> shapes;
     color ambient{0.1f};     ///< Ia, the ambient light intensity
-    color background{0.0f};  ///< the colour of rays that hit nothing
+    color background{0.0f};  ///< the color of rays that hit nothing
     int samples = 1;         ///< samples per pixel
     int max_depth = 5;       ///< mirror recursion limit
     material default_material;  ///< used by shapes whose material index is -1

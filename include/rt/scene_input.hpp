@@ -39,6 +39,8 @@ inline bool has_obj_extension(const std::filesystem::path& path)
     return extension == ".obj";
 }
 
+namespace detail {
+
 /// Where a bare model is seen from inside: the direction to look in from `p`
 /// when `p` is enclosed by the model's inner faces, as in a room or a building
 /// (the conference room, Sponza's atrium, open to the sky), or nothing for an
@@ -84,6 +86,8 @@ inline std::optional<vec3> inside_view(const mesh& m, const vec3& p)
     return view;
 }
 
+} // namespace detail
+
 /// A scene for a bare OBJ model: the model with its own materials (the
 /// default material where it has none), a camera, and one light at that
 /// camera's eye (the light stays there when the camera is moved later). The
@@ -115,7 +119,7 @@ inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny, c
     s.cam.eye = centre + distance * glm::normalize(vec3(0, real(0.3), 1));
     s.cam.up = vec3(0, 1, 0);
     s.cam.fov_degrees = fov;
-    if (const std::optional<vec3> view = inside_view(std::get<mesh>(s.shapes.front()), centre)) {
+    if (const std::optional<vec3> view = detail::inside_view(std::get<mesh>(s.shapes.front()), centre)) {
         s.cam.eye = centre;
         s.cam.look_at = centre + *view;
         s.cam.fov_degrees = real(70); // a room needs a wider view than an object

@@ -31,6 +31,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// The length of the shortest edit from a to b (Levenshtein), for "did you mean".
 inline std::size_t edit_distance(const std::string& a, const std::string& b)
 {
@@ -48,6 +50,8 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b)
     }
     return row[b.size()];
 }
+
+} // namespace detail
 
 /// Shortens what a file contained for an error message, so a message never
 /// dumps file contents: at most 24 printable characters, quoted.
@@ -71,7 +75,7 @@ inline std::string nearest_hint(const std::string& word, const std::vector<std::
     const std::string prefix = word.substr(0, compared);
     std::size_t best = 0, best_distance = std::numeric_limits<std::size_t>::max();
     for (std::size_t i = 0; i < known.size(); ++i) {
-        const std::size_t distance = edit_distance(prefix, known[i].substr(0, compared));
+        const std::size_t distance = detail::edit_distance(prefix, known[i].substr(0, compared));
         if (distance < best_distance) {
             best = i;
             best_distance = distance;
@@ -107,7 +111,7 @@ public:
     /// An error at the next unread token: "expected <expected>, found <that token>".
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : found_text(peek()), hint);
+        return make_error(here(), expected, done() ? "the end of the line" : found_text(peek()), hint);
     }
 
     std::string word(const std::string& what)
@@ -167,11 +171,11 @@ public:
         const source_location where = here();
         const vec3 v = vector(what);
         if (glm::dot(v, v) == real(0))
-            throw parse_error(where, "a non-zero " + what, "0 0 0", "a direction needs a length");
+            throw make_error(where, "a non-zero " + what, "0 0 0", "a direction needs a length");
         return v;
     }
 
-    /// An RGB colour with non-negative components.
+    /// An RGB color with non-negative components.
     color rgb(const std::string& what)
     {
         color c;
@@ -179,7 +183,7 @@ public:
             const source_location where = here();
             const real value = number(what + " " + "rgb"[channel]);
             if (value < 0)
-                throw parse_error(where, "a non-negative " + what, detail::short_number(double(value)), "colours cannot be negative");
+                throw make_error(where, "a non-negative " + what, detail::short_number(double(value)), "colors cannot be negative");
             c[channel] = float(value);
         }
         return c;

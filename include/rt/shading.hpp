@@ -5,7 +5,7 @@
 //     L = ka Ia + sum_i [ kd I_i max(0, n.l_i) + ks I_i max(0, n.h_i)^p ]
 // with n the unit surface normal, v the unit direction to the viewer, l_i the
 // unit direction to light i and h_i = (v + l_i)/|v + l_i| the half vector.
-// Colours multiply channel by channel; everything stays linear until output.
+// Colors multiply channel by channel; everything stays linear until output.
 #pragma once
 
 #include <cmath>

@@ -26,6 +26,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// The hit point and normal of a sphere hit that hit_sphere found on ray r,
 /// computed again relative to the centre. The point p + t d itself is no
 /// good for the normal when the ray comes from far away: its rounding error,
@@ -80,6 +82,8 @@ inline void refine_sphere_hit(const sphere& s, const ray& r, hit_record& rec)
     rec.normal = rec.geometric_normal;
 }
 
+} // namespace detail
+
 /// The closest hit of one shape in [tmin, tmax], by the library's robust
 /// methods (rt::hit_sphere, the watertight test for triangles and meshes).
 /// rec.shape is left to the caller.
@@ -88,7 +92,7 @@ inline bool hit_shape(const shape& item, const ray& r, real tmin, real tmax, hit
     if (const sphere* ball = std::get_if<sphere>(&item)) {
         if (!hit_sphere(*ball, r, tmin, tmax, rec))
             return false;
-        refine_sphere_hit(*ball, r, rec);
+        detail::refine_sphere_hit(*ball, r, rec);
         return true;
     }
     if (const triangle* tri = std::get_if<triangle>(&item))

@@ -49,6 +49,8 @@
 
 namespace rt {
 
+namespace detail {
+
 /// PBR 3rd ed., sec. 3.9.5: the point p moved past its error box p +- p_error
 /// along the unit normal n, to the side of the direction w.
 inline vec3 offset_past_error_bounds(const vec3& p, const vec3& p_error, const vec3& n, const vec3& w)
@@ -66,6 +68,8 @@ inline vec3 offset_past_error_bounds(const vec3& p, const vec3& p_error, const v
     }
     return moved;
 }
+
+} // namespace detail
 
 /// Where a shadow segment towards a point stops: t < 1 - shadow_epsilon, so a
 /// light that sits on a surface is not blocked by that surface (pbrt's
@@ -111,7 +115,7 @@ inline ray spawn_ray(const hit_record& rec, const vec3& direction)
     const real side = along < 0 ? real(-1) : real(1);
     const real bound = detail::grazing_bound(direction);
     const vec3 d = std::fabs(along) <= bound ? direction + (side * 2 * bound) * n : direction;
-    return ray{offset_past_error_bounds(rec.point, rec.point_error, n, side * n), d};
+    return ray{detail::offset_past_error_bounds(rec.point, rec.point_error, n, side * n), d};
 }
 
 /// The segment from the hit `rec` to the point `target`: a ray with t = 1 at
@@ -128,7 +132,7 @@ inline ray spawn_ray_to(const hit_record& rec, const vec3& target)
     const vec3 w = target - rec.point;
     const real along = glm::dot(w, n);
     const real side = along < 0 ? real(-1) : real(1);
-    const vec3 origin = offset_past_error_bounds(rec.point, rec.point_error, n, side * n);
+    const vec3 origin = detail::offset_past_error_bounds(rec.point, rec.point_error, n, side * n);
     // how far the target's height above the true plane can be from `along`:
     // the hit point's error along n, and the uncertainty of w . n itself
     const real uncertainty = glm::dot(glm::abs(n), rec.point_error) + detail::grazing_bound(w);

@@ -70,6 +70,8 @@ inline void fill_sphere_record(const sphere& s, const ray& r, real t, hit_record
     rec.b1 = rec.b2 = 0;
 }
 
+namespace detail {
+
 /// The parts of the loader's one-line message for a sphere that does not fit
 /// its position: what was expected, what was found, and the hint.
 inline std::string sphere_radius_expected(const sphere& s)
@@ -88,5 +90,7 @@ inline std::string sphere_radius_found(const sphere& s)
 constexpr const char* sphere_scale_hint =
     "the sphere is smaller than the rounding of its centre; move the scene nearer the origin, enlarge the "
     "sphere, or build with -DRT_USE_DOUBLE=ON";
+
+} // namespace detail
 
 } // namespace rt

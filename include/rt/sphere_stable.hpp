@@ -75,8 +75,8 @@ inline bool sphere_roots_stable(const sphere& s, const ray& r, real& t0, real& t
 /// The library's default sphere intersection: the stable roots, the nearest in
 /// [tmin, tmax], and the hit record filled by fill_sphere_record
 /// (sphere_shape.hpp), as the stage-03 exercise fills it; untouched on a miss.
-/// (The scene-level intersection, intersect.hpp, then
-/// recomputes point and normal accurately: refine_sphere_hit.)
+/// (The scene-level intersection, accelerator.hpp, then
+/// recomputes point and normal accurately: detail::refine_sphere_hit.)
 inline bool hit_sphere(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
     real t0 = 0, t1 = 0;

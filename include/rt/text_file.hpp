@@ -74,8 +74,8 @@ inline void check_text(const std::string& text, std::size_t from, std::size_t to
         const unsigned char c = static_cast<unsigned char>(text[i]);
         const std::size_t length = (c < 32 && c != '\t' && c != '\r') || c == 127 ? 0 : utf8_length(text, i);
         if (length == 0 || i + length > to)
-            throw parse_error({where.file, where.line, int(i) + 1}, "plain text (ASCII or UTF-8)",
-                              "a byte of value " + std::to_string(int(c)), "is this a scene file?");
+            throw make_error({where.file, where.line, int(i) + 1}, "plain text (ASCII or UTF-8)",
+                             "a byte of value " + std::to_string(int(c)), "is this a scene file?");
         i += length;
     }
 }
@@ -134,8 +134,8 @@ void for_each_line(const std::string& text, const std::string& file, Each&& each
             while (stop != end && *stop != '\n' && *stop != '\r') {
                 const unsigned char c = static_cast<unsigned char>(*stop);
                 if (c < 32 && c != '\t')
-                    throw parse_error({file, number, int(stop - p) + 1}, "text",
-                                      "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
+                    throw make_error({file, number, int(stop - p) + 1}, "text",
+                                     "a byte of value " + std::to_string(int(c)), "is this an OBJ or MTL file?");
                 ++stop;
             }
             pieces.push_back({logical.size(), number, 1});

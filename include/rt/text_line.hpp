@@ -136,7 +136,7 @@ public:
         if (syntax_.quotes && next_ != end_ && *next_ == '"') {
             const char* close = std::find(next_ + 1, end_, '"');
             if (close == end_)
-                throw parse_error(here(), "a closing '\"'", "the end of the line");
+                throw make_error(here(), "a closing '\"'", "the end of the line");
             std::string text(next_ + 1, close);
             next_ = close + 1;
             skip_blanks();
@@ -152,7 +152,7 @@ public:
     /// An error at the cursor: "expected <expected>, found <the next word>".
     error unexpected(const std::string& expected, const std::string& hint = {}) const
     {
-        return parse_error(here(), expected, done() ? "the end of the line" : "'" + printable(peek_word(), 24) + "'", hint);
+        return make_error(here(), expected, done() ? "the end of the line" : "'" + detail::printable(peek_word(), 24) + "'", hint);
     }
 
     /// A finite number of magnitude at most `largest` (rt::real's largest by

@@ -1,10 +1,10 @@
 // tonemap.hpp - exposure and tone maps: linear radiance to display values in [0, 1] (stage 08).
 //
 // A renderer computes radiance, which has no upper bound; a display shows
-// values in [0, 1]. The colour pipeline (encoding.hpp) first scales by the
+// values in [0, 1]. The color pipeline (encoding.hpp) first scales by the
 // exposure, then compresses [0, inf) into [0, 1] with a tone map, then encodes
 // (transfer.hpp) and quantises. Each tone map here acts on one channel; applied
-// to R, G and B separately, bright saturated colours drift towards white, which
+// to R, G and B separately, bright saturated colors drift towards white, which
 // is the usual look of a per-channel curve.
 //
 //   exposure   c' = c 2^stops                      (photographic stops)
@@ -82,7 +82,7 @@ inline float apply_tonemap(float x, tonemap_kind kind)
     return tonemap_clamp(x);
 }
 
-/// Each channel of a colour through the named tone map.
+/// Each channel of a color through the named tone map.
 inline color apply_tonemap(const color& c, tonemap_kind kind)
 {
     return color(apply_tonemap(c.r, kind), apply_tonemap(c.g, kind), apply_tonemap(c.b, kind));

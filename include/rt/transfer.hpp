@@ -2,10 +2,10 @@
 //
 // Displays do not respond linearly to the stored number; image files store
 // values encoded by a transfer function so that the 256 byte levels are spread
-// evenly for the eye. Viewers treat PNG and PPM files that carry no colour
+// evenly for the eye. Viewers treat PNG and PPM files that carry no color
 // information as sRGB.
 //
-//   sRGB (IEC 61966-2-1:1999, "Default RGB colour space - sRGB"):
+//   sRGB (IEC 61966-2-1:1999, "Default RGB color space - sRGB"):
 //       encode(x) = 12.92 x                   for x <= 0.0031308
 //                   1.055 x^(1/2.4) - 0.055   otherwise
 //       decode(v) = v / 12.92                 for v <= 0.04045

@@ -1,7 +1,7 @@
-// vec.hpp - points, directions and colours.
+// vec.hpp - points, directions and colors.
 //
 // GLM gives the vector algebra (dot, cross, normalize, length); rt only names
-// the types. Points and directions use rt::real; colours are always linear RGB
+// the types. Points and directions use rt::real; colors are always linear RGB
 // floats (the course: "RGB floats internally, RGB bytes stored").
 #pragma once
 

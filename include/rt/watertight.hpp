@@ -169,10 +169,9 @@ F watertight_t_error(const F x[3], const F y[3], const F z[3], const F X[3], con
 
 /// The sliver case of the distance check. The bound of watertight_t_error
 /// grows with the corners' distances over |det|, and |det| (twice the area of
-/// the sheared triangle) is tiny for a sliver: measured on sponza-dabrovic.obj
-/// (docs/performance.md, experiment 6), a shadow ray meets a sliver 10.8 units
-/// long and 0.015 wide at t = 0.0255 where the float bound is 0.0282, and the
-/// light leaked through. When the float t is within its bound, the whole test
+/// the sheared triangle) is tiny for a sliver: on Sponza's slivers the float
+/// bound exceeded the hit's own t, and light leaked through shadows (the case:
+/// docs/performance.md, experiment 6). When the float t is within its bound, the whole test
 /// (translation, shear, edge functions, det, T) is redone in double from the
 /// float corners and ray, with the bound of the same formula in double, 2^29
 /// times smaller: a t that is truly positive by more than that is accepted. A

@@ -49,7 +49,7 @@ int main(int argc, char** argv)
                     strict = true;
                 } else if (arg == "--projection") {
                     projection = stage::parse_name<rt::projection>(arg, args.value_of(arg), rt::projection_from_name,
-                                                                  rt::names_listed(rt::projection_names));
+                                                                  rt::detail::names_listed(rt::projection_names));
                 } else if (arg == "--edge") {
                     edge_prefix = args.value_of("--edge");
                 } else {

@@ -11,7 +11,7 @@
 //
 // Writes, for PREFIX (default "stage03"):
 //   PREFIX-hit.png     white where a ray hit a sphere, black where it missed
-//   PREFIX-normal.png  the unit normal n at the hit as a colour, (n + 1) / 2
+//   PREFIX-normal.png  the unit normal n at the hit as a color, (n + 1) / 2
 //   PREFIX-normal.pfm  the normal itself, n in [-1, 1] per channel (0 0 0: miss)
 //   PREFIX-depth.pfm   the distance from the eye to the hit, t |d|, in every channel (0: miss)
 //   PREFIX-depth.png   depth as grey, linear from the nearest hit (white) to the farthest (1/4 grey)

@@ -1,4 +1,4 @@
-// Stage 05 - shading: every pixel coloured by Blinn-Phong (include/rt/shading.hpp),
+// Stage 05 - shading: every pixel colored by Blinn-Phong (include/rt/shading.hpp),
 // every light visible (no shadows yet: that is stage 06).
 //
 //     stage05_shading scenes/shading.scene -o shading.png [--falloff]

@@ -101,7 +101,7 @@ int main(int argc, char** argv)
         for (int k = 0; k < 5; ++k)
             rt::paste(sheet, slanted_edge(16, 8, samplers[k], spp), k * (panel + gap), 2 * (panel + gap));
         // the picture is grey: stored as a one-channel PNG (a third of the bytes),
-        // through the same colour pipeline as every image (sRGB, 8 bits)
+        // through the same color pipeline as every image (sRGB, 8 bits)
         const std::vector<std::uint8_t> rgb = rt::encode_image(sheet, rt::encoding{});
         std::vector<std::uint8_t> grey;
         for (std::size_t k = 0; k < rgb.size(); k += 3)

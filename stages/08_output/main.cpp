@@ -6,10 +6,10 @@
 //     stage08_output ../shared/meshes/stanford-bunny.obj -o bunny.pfm --aov rays
 //     stage08_output --pattern zoneplate --width 256 --height 256 --sampler jittered --spp 16 -o zp.png
 //
-// Each sample's colour is rt::ray_color (stages 05-07) over the scene's
+// Each sample's color is rt::ray_color (stages 05-07) over the scene's
 // rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
 // include/rt/radiance.hpp, shared with the viewer (stages/viewer). The
-// renderer, the BVH and the stage-07 colour are compiled once
+// renderer, the BVH and the stage-07 color are compiled once
 // (stages/common/support_frame.cpp); this file holds stage 08's own part.
 #include <algorithm>
 #include <array>
@@ -45,7 +45,7 @@ const std::string usage = std::string(
     "usage: stage08_output (SCENE | MODEL.obj | --pattern NAME) [options]\n"
     "Renders a scene file, a bare OBJ model (framed by a camera, lit from the camera),\n"
     "or an analytic test pattern, to an image whose format the extension names.\n"
-    "  -o OUTPUT             .png or .ppm (8-bit, through the colour pipeline) or .pfm\n"
+    "  -o OUTPUT             .png or .ppm (8-bit, through the color pipeline) or .pfm\n"
     "                        (linear floats, exact); default render.png\n"
     ) + stage::render_options_usage +
     "  --pattern P           zoneplate | edge: render an analytic test pattern, no scene\n"
@@ -55,7 +55,7 @@ const std::string usage = std::string(
     "  --quiet               no progress bar and no summary line\n"
     "  --pixel I J           tell the story of one pixel instead of writing the image: the\n"
     "                        ray through its centre, every hit, light, shadow and mirror ray,\n"
-    "                        the colour and what exposure, tone map and encoding make of it;\n"
+    "                        the color and what exposure, tone map and encoding make of it;\n"
     "                        I is the column from the left, J the row from the top\n"
     "  --pixel-json I J      the same as JSON (infinities are null)\n"
     "  --help                this text\n";
@@ -143,13 +143,13 @@ int main(int argc, char** argv)
             throw rt::error(render.input.empty()
                                 ? "expected a scene file, an OBJ file or --pattern, found none; see --help"
                                 : "expected a scene file or --pattern, found both; see --help");
-        if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::none)
+        if (set.pattern != pattern_kind::none && render.aov != rt::aov_kind::shaded)
             throw rt::error("expected --aov or --pattern, found both; a pattern has no scene to show");
         if (set.pattern != pattern_kind::none && render.camera)
             throw rt::error("expected --camera or --pattern, found both; a pattern has no camera");
         if (set.pixel.wanted && set.pattern != pattern_kind::none)
             throw rt::error("expected --pixel or --pattern, found both; a pattern has no rays to tell of");
-        if (set.pixel.wanted && render.aov != rt::aov_kind::none)
+        if (set.pixel.wanted && render.aov != rt::aov_kind::shaded)
             throw rt::error("expected --pixel or --aov, found both; the story is the shaded image's");
         if (!set.pixel.wanted) {
             rt::check_image_output(stage::file_argument(set.output)); // fail before the work, not after it
@@ -184,7 +184,7 @@ int main(int argc, char** argv)
         }
 
         if (set.pixel.wanted) {
-            // the ray through the pixel's centre, traced by the stage-07 colour function
+            // the ray through the pixel's centre, traced by the stage-07 color function
             stage::story st =
                 stage::shaded_story(scene, "stage08_output", set.pixel.column, set.pixel.row, options.width, options.height);
             stage::add_encoding_story(st, render.encoding, options.samples_per_pixel);
@@ -195,9 +195,9 @@ int main(int argc, char** argv)
             return 0;
         }
 
-        // the renderer, the BVH and the stage-07 colour are compiled once
+        // the renderer, the BVH and the stage-07 color are compiled once
         // (support_frame.cpp): an edit to a stage-08 exercise rebuilds none of them
-        rt::progress_bar bar(std::cerr, !set.quiet && rt::stderr_is_terminal());
+        rt::progress_bar bar(std::cerr, !set.quiet && rt::detail::stderr_is_terminal());
         const rt::render_result result =
             set.pattern != pattern_kind::none
                 ? stage::render_image(

@@ -5,7 +5,7 @@
 //
 //     stage10_distribution scenes/soft.scene -o soft.png [--spp N] [--pixel I J]
 //
-// The image is rt::render's (stage 08) of rt::make_radiance's colour, compiled
+// The image is rt::render's (stage 08) of rt::make_radiance's color, compiled
 // once in stages/common/support_frame.cpp: that file includes this stage's
 // headers, so an edit to them rebuilds it and this program only.
 #include <cstdint>
@@ -73,7 +73,7 @@ int main(int argc, char** argv)
         options.samples_per_pixel = spp > 0 ? spp : s.samples;
         options.sampler = rt::sampler_kind::jittered;
         options.seed = seed;
-        const rt::render_result out = stage::render_scene(s, rt::aov_kind::none, options, {});
+        const rt::render_result out = stage::render_scene(s, rt::aov_kind::shaded, options, {});
         stage::save_image(output, out.pixels, 2.2f);
         const int samples = rt::effective_samples(options.sampler, options.samples_per_pixel);
         std::cerr << "stage10_distribution: wrote " << output << " (" << s.width << "x" << s.height << ", " << samples

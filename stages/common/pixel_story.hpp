@@ -32,7 +32,7 @@
 
 namespace stage {
 
-/// One question asked of the scene while the pixel's colour was computed.
+/// One question asked of the scene while the pixel's color was computed.
 struct query_record {
     enum class kind { closest, any };
     kind what = kind::closest;
@@ -72,7 +72,7 @@ private:
     std::vector<query_record>* log_;
 };
 
-/// One light's part in the colour of one hit (stages 05-07).
+/// One light's part in the color of one hit (stages 05-07).
 struct light_term {
     std::size_t query = 0;     ///< the closest-hit query whose hit this lights
     std::size_t light = 0;     ///< index into scene::lights
@@ -92,7 +92,7 @@ struct story {
     std::vector<query_record> queries;
     std::vector<light_term> lights;
     std::vector<rt::color> ambient;  ///< per closest-hit query with a hit: ka Ia (stages 05-07)
-    rt::color linear{0.0f};          ///< the colour the stage computed, before storing
+    rt::color linear{0.0f};          ///< the color the stage computed, before storing
     /// Further lines, in order: ("tone mapped", "0.5 0.25 0"), ("stored bytes", "186 137 0") ...
     std::vector<std::pair<std::string, std::string>> values;
 };

@@ -56,7 +56,7 @@ struct render_settings {
     int threads = 0;
     rt::encoding encoding;
     std::uint64_t seed = 0;
-    rt::aov_kind aov = rt::aov_kind::none;
+    rt::aov_kind aov = rt::aov_kind::shaded;
     std::optional<rt::camera> camera;
     bool strict = false; ///< --strict: warnings of OBJ files are errors
 };
@@ -74,9 +74,9 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
         s.spp = int(parse_integer(arg, value(), 1, 1 << 16));
     } else if (arg == "--sampler") {
         s.sampler = parse_name<rt::sampler_kind>(arg, value(), rt::sampler_from_name,
-                                                 rt::names_listed(rt::sampler_names));
+                                                 rt::detail::names_listed(rt::sampler_names));
     } else if (arg == "--filter") {
-        s.filter = parse_name<rt::filter_kind>(arg, value(), rt::filter_from_name, rt::names_listed(rt::filter_names));
+        s.filter = parse_name<rt::filter_kind>(arg, value(), rt::filter_from_name, rt::detail::names_listed(rt::filter_names));
     } else if (arg == "--filter-radius") {
         s.filter_radius = parse_number(arg, value(), 0, 16, true);
     } else if (arg == "--threads") {
@@ -87,7 +87,7 @@ inline bool read_render_option(arguments& args, const std::string& arg, render_s
         s.max_depth = int(parse_integer(arg, value(), 0, 64));
     } else if (arg == "--tonemap") {
         s.encoding.tonemap =
-            parse_name<rt::tonemap_kind>(arg, value(), rt::tonemap_from_name, rt::names_listed(rt::tonemap_names));
+            parse_name<rt::tonemap_kind>(arg, value(), rt::tonemap_from_name, rt::detail::names_listed(rt::tonemap_names));
     } else if (arg == "--exposure") {
         s.encoding.exposure = float(parse_number(arg, value(), -64, 64));
     } else if (arg == "--gamma") {

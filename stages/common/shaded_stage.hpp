@@ -1,6 +1,6 @@
 // shaded_stage.hpp - what the stage 05, 06 and 07 programs share: read
 // "SCENE [-o OUTPUT] [--pixel I J] [stage options]", render one centred
-// sample per pixel with the stage's colour function and the library's
+// sample per pixel with the stage's color function and the library's
 // accelerator (stage::world, compiled once), and store it; or, with --pixel,
 // tell that pixel's story (pixel_story.hpp).
 #pragma once
@@ -23,20 +23,20 @@
 namespace stage {
 
 /// What the pixel's story explains: shadow rays (stages 06 and 07) and
-/// light falloff, as the stage's colour function uses them.
+/// light falloff, as the stage's color function uses them.
 struct story_options {
     bool shadows = false;
     bool falloff = false;
 };
 
-/// Renders `scene_path` with `colour` to `output` (format from the extension),
-/// or prints the story of `pixel`. `colour(scene, accelerator, ray)` must take
+/// Renders `scene_path` with `color` to `output` (format from the extension),
+/// or prints the story of `pixel`. `color(scene, accelerator, ray)` must take
 /// any accelerator (a generic lambda): stage::world for the image, a
 /// stage::recording of it for the story. `adjust` may change the loaded scene
 /// first (a command-line override).
-template <class Colour>
+template <class Color>
 void render_shaded(const std::string& program, const std::string& scene_path, const std::string& output,
-                   const pixel_request& pixel, const story_options& explain, const Colour& colour,
+                   const pixel_request& pixel, const story_options& explain, const Color& color,
                    const std::function<void(rt::scene&)>& adjust = {})
 {
     if (!pixel.wanted) {
@@ -59,7 +59,7 @@ void render_shaded(const std::string& program, const std::string& scene_path, co
         st.program = program;
         place_pixel(st, pixel.column, pixel.row, gen.nx, gen.ny);
         st.camera = rt::pixel_ray(gen, st.i, st.j);
-        st.linear = colour(s, recording<stage::world>(w, st.queries), st.camera);
+        st.linear = color(s, recording<stage::world>(w, st.queries), st.camera);
         name_queries(st);
         explain_lights(st, s, explain.shadows, explain.falloff,
                        [](const rt::material& m, const rt::vec3& n, const rt::vec3& v, const rt::vec3& l,
@@ -73,7 +73,7 @@ void render_shaded(const std::string& program, const std::string& scene_path, co
     }
     const rt::image pixels = render_centres(
         s.width, s.height, [&gen](rt::real x, rt::real y) { return rt::generate_ray(gen, x, y); },
-        [&](const rt::ray& r) { return colour(s, w, r); });
+        [&](const rt::ray& r) { return color(s, w, r); });
     save_image(output, pixels, 2.2f);
     std::cerr << program << ": wrote " << output << " (" << s.width << "x" << s.height << ")\n";
 }

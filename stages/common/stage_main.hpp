@@ -32,7 +32,7 @@ struct pixel_request {
 /// The help lines every program from stage 03 on prints for --pixel.
 inline const char* pixel_help =
     "  --pixel I J      tell the story of one pixel instead of writing images: its camera\n"
-    "                   ray, every hit, light and shadow ray, and its colour; I is the\n"
+    "                   ray, every hit, light and shadow ray, and its color; I is the\n"
     "                   column from the left, J the row from the top (as image viewers count)\n"
     "  --pixel-json I J the same as JSON (infinities are null)\n";
 
@@ -98,7 +98,7 @@ int run(const char* program, Body&& body)
     } catch (const std::bad_alloc&) {
         const std::uint64_t limit = rt::memory_limit();
         std::cerr << program << ": expected enough memory for the work, found an allocation refused ("
-                  << (limit > 0 ? "the memory limit, ulimit -v, is " + rt::mebibytes(limit)
+                  << (limit > 0 ? "the memory limit, ulimit -v, is " + rt::detail::mebibytes(limit)
                                 : std::string("the machine's memory is used up"))
                   << "); make the image or the scene smaller\n";
         return 1;

@@ -9,7 +9,7 @@
 //     const stage::world w(s);                        // rt::accelerator: BVH, robust tests
 //     rt::hit_record hit;
 //     if (w.closest_hit(r, 0, rt::infinity, hit)) ...
-//     const rt::image img = stage::render_centres(s.width, s.height, rays, colour);
+//     const rt::image img = stage::render_centres(s.width, s.height, rays, color);
 //     stage::save_image("out.png", img, 2.2f);
 //
 // Each function is the library's own (rt::load_scene, rt::load_input,
@@ -92,7 +92,7 @@ void save_images(const std::vector<image_output>& outputs);
 /// .png, .ppm or .pfm file (call it before any work).
 void check_image_output(const std::string& path);
 
-/// The three bytes save_image stores for a linear colour `c` ("186 137 0").
+/// The three bytes save_image stores for a linear color `c` ("186 137 0").
 std::string stored_bytes(const rt::color& c, float gamma = 2.2f);
 
 /// The library's scene-level intersection (rt::accelerator: the BVH, the
@@ -132,11 +132,11 @@ std::string simd_path();
 
 /// A ray through a film position (pixels from the bottom-left corner).
 using ray_source = std::function<rt::ray(rt::real, rt::real)>;
-/// The colour a ray brings back.
-using colour_function = std::function<rt::color(const rt::ray&)>;
+/// The color a ray brings back.
+using color_function = std::function<rt::color(const rt::ray&)>;
 
 /// An nx x ny image, one ray through each pixel centre (the image of stages
 /// 02-07), traced on every core by rt::render; the top row is stored first.
-rt::image render_centres(int nx, int ny, const ray_source& rays, const colour_function& colour);
+rt::image render_centres(int nx, int ny, const ray_source& rays, const color_function& color);
 
 } // namespace stage

@@ -45,7 +45,7 @@ story shaded_story(const rt::scene& s, const std::string& program, int column, i
     place_pixel(st, column, row, gen.nx, gen.ny);
     st.camera = rt::pixel_ray(gen, st.i, st.j);
     // as rt::make_radiance does for the render's first sample of this pixel, at
-    // the pixel's centre: stage 09's colour where the scene has glass or a glossy
+    // the pixel's centre: stage 09's color where the scene has glass or a glossy
     // mirror, and stage 10's random numbers for the lens, area lights and gloss
     rt::pcg32 random = rt::seeded_generator(0, std::uint64_t(row) * std::uint64_t(nx) + std::uint64_t(column), 1,
                                             rt::integrator_stream);

@@ -17,7 +17,7 @@ namespace stage {
 
 void save_encoded(const std::string& path, const rt::image& img, rt::aov_kind aov, const rt::encoding& enc)
 {
-    rt::save_image(file_argument(path), img, rt::output_encoding(aov, enc, img));
+    rt::save_image_encoded(file_argument(path), img, rt::output_encoding(aov, enc, img));
 }
 
 void add_encoding_story(story& st, const rt::encoding& enc, int samples_per_pixel)

@@ -5,14 +5,14 @@
 
 namespace stage {
 
-rt::image render_centres(int nx, int ny, const ray_source& rays, const colour_function& colour)
+rt::image render_centres(int nx, int ny, const ray_source& rays, const color_function& color)
 {
     rt::render_options options;
     options.width = nx;
     options.height = ny;
     options.samples_per_pixel = 1;
     options.sampler = rt::sampler_kind::center; // one ray through each pixel centre, as in the book
-    return rt::render(options, rays, [&colour](const rt::ray& r, rt::sample_context&) { return colour(r); }).pixels;
+    return rt::render(options, rays, [&color](const rt::ray& r, rt::sample_context&) { return color(r); }).pixels;
 }
 
 } // namespace stage

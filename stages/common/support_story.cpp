@@ -31,7 +31,7 @@ std::string triple(const Vector& v)
     return "(" + number(double(v.x)) + ", " + number(double(v.y)) + ", " + number(double(v.z)) + ")";
 }
 
-std::string colour_text(const rt::color& c)
+std::string color_text(const rt::color& c)
 {
     return "(" + number(double(c.r)) + ", " + number(double(c.g)) + ", " + number(double(c.b)) + ")";
 }
@@ -42,7 +42,7 @@ std::string json_triple(const Vector& v)
     return "[" + json_number(double(v.x)) + ", " + json_number(double(v.y)) + ", " + json_number(double(v.z)) + "]";
 }
 
-std::string json_colour(const rt::color& c)
+std::string json_color(const rt::color& c)
 {
     return "[" + json_number(double(c.r)) + ", " + json_number(double(c.g)) + ", " + json_number(double(c.b)) + "]";
 }
@@ -122,7 +122,7 @@ void print_story(std::ostream& out, const story& s, const rt::scene& sc)
             out << ", ends at " << triple(q.r.at(q.tmax));
         out << "\n";
         if (!q.hit) {
-            out << "    " << (closest ? "missed: the background " + colour_text(sc.background)
+            out << "    " << (closest ? "missed: the background " + color_text(sc.background)
                                       : std::string("nothing in the way: the light is visible"))
                 << "\n";
             continue;
@@ -141,22 +141,22 @@ void print_story(std::ostream& out, const story& s, const rt::scene& sc)
         for (std::size_t m = 0; m < k; ++m)
             hit_index += s.queries[m].what == query_record::kind::closest && s.queries[m].hit ? 1 : 0;
         if (hit_index < s.ambient.size())
-            out << "    ambient ka Ia " << colour_text(s.ambient[hit_index]) << "\n";
+            out << "    ambient ka Ia " << color_text(s.ambient[hit_index]) << "\n";
         for (const light_term& t : s.lights) {
             if (t.query != k)
                 continue;
             out << "    light " << t.light << ": l " << triple(t.sample.l) << ", distance "
-                << number(double(t.sample.distance)) << ", I " << colour_text(t.sample.intensity);
+                << number(double(t.sample.distance)) << ", I " << color_text(t.sample.intensity);
             if (t.behind)
                 out << "; behind the surface: no light, no shadow ray\n";
             else if (!t.visible)
                 out << "; in shadow (query [" << *t.shadow_query << "]): no light\n";
             else
                 out << (t.shadow_query ? "; visible (query [" + std::to_string(*t.shadow_query) + "])" : std::string())
-                    << "; Blinn-Phong term " << colour_text(t.term) << "\n";
+                    << "; Blinn-Phong term " << color_text(t.term) << "\n";
         }
     }
-    out << "colour (linear) " << colour_text(s.linear) << "\n";
+    out << "color (linear) " << color_text(s.linear) << "\n";
     for (const auto& [name, value] : s.values)
         out << name << " " << value << "\n";
 }
@@ -190,18 +190,18 @@ void print_story_json(std::ostream& out, const story& s, const rt::scene& sc)
     }
     out << "\n  ],\n  \"ambient\": [";
     for (std::size_t k = 0; k < s.ambient.size(); ++k)
-        out << (k ? ", " : "") << json_colour(s.ambient[k]);
+        out << (k ? ", " : "") << json_color(s.ambient[k]);
     out << "],\n  \"lights\": [";
     for (std::size_t k = 0; k < s.lights.size(); ++k) {
         const light_term& t = s.lights[k];
         out << (k ? ",\n" : "\n") << "    {\"query\": " << t.query << ", \"light\": " << t.light
             << ", \"l\": " << json_triple(t.sample.l) << ", \"distance\": " << json_number(double(t.sample.distance))
-            << ", \"intensity\": " << json_colour(t.sample.intensity)
+            << ", \"intensity\": " << json_color(t.sample.intensity)
             << ", \"behind\": " << (t.behind ? "true" : "false") << ", \"visible\": " << (t.visible ? "true" : "false")
             << ", \"shadow_query\": " << (t.shadow_query ? std::to_string(*t.shadow_query) : std::string("null"))
-            << ", \"term\": " << json_colour(t.term) << "}";
+            << ", \"term\": " << json_color(t.term) << "}";
     }
-    out << (s.lights.empty() ? "" : "\n  ") << "],\n  \"colour\": " << json_colour(s.linear) << ",\n  \"values\": {";
+    out << (s.lights.empty() ? "" : "\n  ") << "],\n  \"color\": " << json_color(s.linear) << ",\n  \"values\": {";
     for (std::size_t k = 0; k < s.values.size(); ++k)
         out << (k ? ", " : "") << json_string(s.values[k].first) << ": " << json_string(s.values[k].second);
     out << "}\n}\n";

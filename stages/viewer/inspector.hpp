@@ -3,7 +3,7 @@
 // main.cpp draws the segments this header computes).
 //
 //     const stage::story st = stage::shaded_story(scene, "stage08_output", column, row, nx, ny);
-//     for (const viewer::overlay_segment& s : viewer::story_segments(st, gen, reach)) ...draw s.a -> s.b in s.what's colour
+//     for (const viewer::overlay_segment& s : viewer::story_segments(st, gen, reach)) ...draw s.a -> s.b in s.what's color
 //
 // Each recorded query becomes a segment in the world, from its origin to what
 // it hit (a closest hit), to its blocker or its end (a shadow ray), or to
@@ -40,7 +40,7 @@ struct window_point {
     double x = 0, y = 0;
 };
 
-/// The kinds of ray, each drawn in its own colour.
+/// The kinds of ray, each drawn in its own color.
 enum class ray_kind { camera, shadow_visible, shadow_blocked, reflection, refraction, other };
 
 inline const char* name_of(ray_kind k)

@@ -173,7 +173,7 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                   "--filter-radius", rt::exact_number_text(v.reconstruction.radius),
                                   "--max-depth", std::to_string(v.max_depth),
                                   "--seed", std::to_string(v.seed)};
-    if (v.aov != rt::aov_kind::none) {
+    if (v.aov != rt::aov_kind::shaded) {
         a.insert(a.end(), {"--aov", rt::name_of(v.aov)});
     } else {
         a.insert(a.end(), {"--tonemap", rt::name_of(enc.tonemap), "--exposure", number(double(enc.exposure))});
@@ -225,8 +225,8 @@ public:
         commands_ = viewer::parse_script(set.script, set.script_name);
         for (const viewer::script_command& c : commands_)
             if (c.name == "key" && SDL_GetKeyFromName(c.arguments[0].c_str()) == SDLK_UNKNOWN)
-                throw rt::parse_error(c.where, "an SDL key name (\"5\", \"]\", \"s\", \"Escape\")",
-                                      stage::quoted(c.arguments[0]));
+                throw rt::make_error(c.where, "an SDL key name (\"5\", \"]\", \"s\", \"Escape\")",
+                                     stage::quoted(c.arguments[0]));
 
         window_.reset(SDL_CreateWindow("rt viewer", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, view_.width,
                                        view_.height, SDL_WINDOW_SHOWN));
@@ -288,7 +288,7 @@ public:
                 if (next_command_ < commands_.size())
                     where = " at " + rt::to_string(commands_[next_command_].where) + " ('" +
                             commands_[next_command_].name + "')";
-                throw rt::error("timed out after " + rt::format_duration(set_.timeout) + where);
+                throw rt::error("timed out after " + rt::detail::format_duration(set_.timeout) + where);
             }
         }
         return 0;
@@ -346,7 +346,7 @@ private:
     void key(SDL_Keycode sym)
     {
         switch (sym) {
-        case SDLK_1: set_aov(rt::aov_kind::none); break;
+        case SDLK_1: set_aov(rt::aov_kind::shaded); break;
         case SDLK_2: set_aov(rt::aov_kind::normal); break;
         case SDLK_3: set_aov(rt::aov_kind::depth); break;
         case SDLK_4: set_aov(rt::aov_kind::position); break;
@@ -461,7 +461,7 @@ private:
             rt::name_of(encoding_.tonemap));
     }
 
-    /// Bytes and texture of rows [y0, y1) of the shown image, through the colour pipeline.
+    /// Bytes and texture of rows [y0, y1) of the shown image, through the color pipeline.
     void encode_rows(int y0, int y1)
     {
         const rt::encoding enc = display_encoding();
@@ -513,9 +513,9 @@ private:
                 title << " done";
             else
                 title << ' ' << int(status_.level_fraction * 100) << '%';
-            title << " - " << rt::format_duration(status_.seconds);
+            title << " - " << rt::detail::format_duration(status_.seconds);
             if (status_.seconds > 0)
-                title << " - " << rt::format_count(double(status_.rays) / status_.seconds) << "rays/s";
+                title << " - " << rt::detail::format_count(double(status_.rays) / status_.seconds) << "rays/s";
         }
         SDL_SetWindowTitle(window_.get(), title.str().c_str());
     }
@@ -541,7 +541,7 @@ private:
         const std::optional<viewer::completed_image> done = progressive_->completed();
         stage::add_encoding_story(st, encoding_,
                                   done ? done->pass.samples_per_pixel : view_.samples_per_pixel);
-        if (view_.aov != rt::aov_kind::none)
+        if (view_.aov != rt::aov_kind::shaded)
             say("the story is the shaded image's (key 1), whatever the view shows");
         stage::print_story(std::cerr, st, s);
         story_ = std::move(st);
@@ -558,7 +558,7 @@ private:
         const double w = double(view_.width), h = double(view_.height);
         for (const viewer::overlay_segment& seg : viewer::story_segments(*story_, gen, reach_)) {
             const auto seen = viewer::clip(seg.a, seg.b, -1, -1, w + 1, h + 1);
-            const std::array<std::uint8_t, 3> rgb = overlay_colour(seg.what);
+            const std::array<std::uint8_t, 3> rgb = overlay_color(seg.what);
             SDL_SetRenderDrawColor(renderer_.get(), rgb[0], rgb[1], rgb[2], 255);
             if (seen)
                 SDL_RenderDrawLineF(renderer_.get(), float(seen->first.x), float(seen->first.y),
@@ -571,7 +571,7 @@ private:
         SDL_SetRenderDrawColor(renderer_.get(), 0, 0, 0, 255);
     }
 
-    static std::array<std::uint8_t, 3> overlay_colour(viewer::ray_kind k)
+    static std::array<std::uint8_t, 3> overlay_color(viewer::ray_kind k)
     {
         switch (k) {
         case viewer::ray_kind::camera: return {255, 255, 255};
@@ -621,7 +621,7 @@ private:
     void save(const viewer::completed_image& done, const std::string& path, bool tell)
     {
         const rt::encoding enc = rt::output_encoding(done.settings.aov, encoding_, done.pixels);
-        rt::save_image(stage::file_argument(path), done.pixels, enc);
+        rt::save_image_encoded(stage::file_argument(path), done.pixels, enc);
         if (tell)
             std::cerr << "viewer: wrote " << path << " (" << done.pass.samples_per_pixel
                       << " spp); the same image: "

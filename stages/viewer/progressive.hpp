@@ -13,7 +13,7 @@
 // Every full-resolution level is the image stage08_output writes for the same
 // settings and that sample count, bit for bit: a band is an rt::render of a
 // crop, and a crop holds exactly the full render's pixels (renderer.hpp).
-// Nothing here computes a colour: the radiance function comes from
+// Nothing here computes a color: the radiance function comes from
 // rt::make_radiance (render_setup.hpp), as in stage08_output.
 //
 // Restarting: start() bumps a generation counter. The radiance function is
@@ -54,7 +54,7 @@ namespace viewer {
 struct view {
     rt::camera cam;
     int width = 640, height = 480;
-    rt::aov_kind aov = rt::aov_kind::none;
+    rt::aov_kind aov = rt::aov_kind::shaded;
     std::optional<rt::sampler_kind> sampler;  ///< none: rt::default_sampler of each level's spp
     int samples_per_pixel = 1;                ///< the last level's
     int max_depth = 5;
@@ -114,7 +114,7 @@ inline rt::render_options level_options(const view& v, const level& l)
 /// What the worker is doing, for the window title.
 struct status {
     std::uint64_t generation = 0;  ///< of the view this status describes
-    rt::aov_kind aov = rt::aov_kind::none;  ///< of that view
+    rt::aov_kind aov = rt::aov_kind::shaded;  ///< of that view
     int levels_done = 0;           ///< the coarse preview counts as one
     int levels_total = 0;
     int samples_per_pixel = 0;     ///< effective, of the level in progress (or the last one)
@@ -369,7 +369,7 @@ private:
     rt::scene scene_;
     radiance_factory factory_;
     rt::radiance_function radiance_;
-    rt::aov_kind radiance_aov_ = rt::aov_kind::none;
+    rt::aov_kind radiance_aov_ = rt::aov_kind::shaded;
 
     // shared, under mutex_ (generation_ is also read without it)
     mutable std::mutex mutex_;

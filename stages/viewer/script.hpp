@@ -110,19 +110,19 @@ inline std::vector<script_command> parse_script(const std::string& text, const s
         command.where = rt::source_location{name, line, words[0].column};
         const char* signature = detail::script_signature(command.name);
         if (!signature)
-            throw rt::parse_error(command.where,
-                                  "a command (orbit, pan, zoom, key, click, wait, sleep, screenshot, title, save, "
-                                  "args, story, quit)",
-                                  "'" + command.name + "'");
+            throw rt::make_error(command.where,
+                                 "a command (orbit, pan, zoom, key, click, wait, sleep, screenshot, title, save, "
+                                 "args, story, quit)",
+                                 "'" + command.name + "'");
         const std::string kinds = signature;
         const std::size_t given = words.size() - 1;
         const std::size_t required = kinds == "?" ? 0 : kinds.size();
         if (given < required || given > kinds.size()) {
             const int column = given > kinds.size() ? words[kinds.size() + 1].column : words.back().column;
             const rt::source_location at{name, line, column};
-            throw rt::parse_error(at, std::to_string(kinds.size()) + (kinds == "?" ? " or 0" : "") + " argument" +
-                                          (kinds.size() == 1 ? "" : "s") + " after '" + command.name + "'",
-                                  std::to_string(given));
+            throw rt::make_error(at, std::to_string(kinds.size()) + (kinds == "?" ? " or 0" : "") + " argument" +
+                                         (kinds.size() == 1 ? "" : "s") + " after '" + command.name + "'",
+                                 std::to_string(given));
         }
         for (std::size_t k = 0; k < given; ++k) {
             const char kind = kinds[k];
@@ -130,7 +130,7 @@ inline std::vector<script_command> parse_script(const std::string& text, const s
             if (kind != 'w' && !detail::is_number(word, kind != 'n')) {
                 const std::string expected =
                     kind == 'n' ? "a number between -1e6 and 1e6" : "a whole number from 0 to 1000000";
-                throw rt::parse_error({name, line, words[k + 1].column}, expected, "'" + word + "'");
+                throw rt::make_error({name, line, words[k + 1].column}, expected, "'" + word + "'");
             }
             command.arguments.push_back(word);
         }

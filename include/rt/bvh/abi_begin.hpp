@@ -3,7 +3,7 @@
 // target) and names it: RT_BVH_ABI, the namespace that holds the
 // width-dependent types and functions (bvh_w8 with AVX2's 8-wide nodes, else
 // bvh_w4). Without it a program whose units are compiled for different
-// targets (one with -mavx2) would have two layouts of rt::bvh_node under one
+// targets (one with -mavx2) would have two layouts of rt::detail::bvh_node under one
 // name, and the linker, keeping one copy of each inline function, could pair
 // one unit's build with the other's traversal; with it each unit has its own
 // types, and passing one unit's accelerator to the other is a link error, not

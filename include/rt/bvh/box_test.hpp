@@ -24,14 +24,10 @@
 #include "../aabb.hpp"
 #include "../ray.hpp"
 #include "../rounding.hpp"
+#include "../slab.hpp" // slab_robust_far_factor, Ize's 1 + 2 gamma_3
 #include "../vec.hpp"
 
 namespace rt {
-
-
-/// Ize 2013: the computed t_far is scaled by 1 + 2 gamma_3 before it is
-/// compared with t_near, so that rounding never culls a box the ray meets.
-constexpr real slab_far_factor = 1 + 2 * gamma_n(3);
 
 /// A ray prepared for box tests: its origin, 1/d (+-inf for a +-0
 /// component) and, per axis, 1 when 1/d is negative (the near plane is hi).
@@ -56,7 +52,7 @@ inline box_ray make_box_ray(const ray& r)
 /// `box` within [tmin, tmax]; `tnear` is then where it enters. `far_factor`
 /// is Ize's 1 + 2 gamma_3; the tests pass 1 to show what goes wrong without it.
 inline bool hit_box(const aabb& box, const box_ray& r, real tmin, real tmax, real& tnear,
-                    real far_factor = slab_far_factor)
+                    real far_factor = slab_robust_far_factor)
 {
     real t0 = tmin, t1 = tmax;
     for (int k = 0; k < 3; ++k) {

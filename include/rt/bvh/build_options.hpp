@@ -38,8 +38,8 @@ struct bvh_options {
     real spatial_overlap = real(3e-3);
     /// Slices per axis of the spatial split search (find_spatial_split): a
     /// reference is clipped against each plane it crosses, so this count sets
-    /// the search's cost; 8 builds Sponza and Sibenik about a fifth faster
-    /// than 16 for the same trace speed (docs/performance.md, experiment 6).
+    /// the search's cost; 8 traces as fast as 16 and builds faster (the
+    /// figure: docs/architecture.md, "Figures behind the comments").
     int spatial_bins = 8;
 };
 

@@ -1,10 +1,8 @@
 // bvh/build_store.hpp - where the build's threads write: the binary tree's
 // nodes and the references of its leaves, each in one store that all the
 // builders (binned_builder.hpp) share, so a subtree built on another thread is
-// in place when it joins. Before, each builder that took a subtree had arrays
-// of its own, copied into its parent's at every join, and grown by doubling:
-// on two threads the conference room's build spent 11 ms copying and faulted
-// in pages the single thread never touched (docs/performance.md, exp. 6).
+// in place when it joins: nothing is copied at a join, and no page is faulted
+// in twice (docs/performance.md, experiment 6).
 //
 //  - binary_node_store: a builder takes runs of `run` consecutive indices,
 //    whose nodes are consecutive in memory, and constructs its nodes there.

@@ -8,9 +8,7 @@
 // the oldest task offered, which is the largest subtree still waiting
 // (Blumofe, Leiserson, "Scheduling Multithreaded Computations by Work
 // Stealing", JACM 46(5), 1999). So no thread idles while a subtree of any
-// size waits, where a node that chose only when it split whether to fork
-// would leave a thread that finished early waiting for subtrees the other
-// had already taken on alone (docs/performance.md, experiment 6).
+// size waits (docs/performance.md, experiment 6).
 //
 //     rt::detail::build_tasks tasks;
 //     tasks.run(threads, [&] {                  // the root, on one of the threads

@@ -27,19 +27,19 @@
 //   descend.hpp         the child a ray enters next, the others pushed
 //   leaf_test.hpp       a ray against a block's four triangles (SSE / scalar)
 //   hit_fill.hpp        a hit's record from its block (SSE), for rt::accelerator
-//   bvh.hpp             this file: build, then closest() and any()
+//   bvh.hpp             this file: build, then closest_hit() and any_hit()
 //   dispatch.hpp        the 8-wide path again, for AVX2 CPUs, in a unit built without AVX2
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
 //     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
 //     const rt::bvh tree(prims);
 //     rt::primitive_hit hit;
-//     if (tree.closest(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
-//     const bool blocked = tree.any(shadow_ray, 0, 1);
+//     if (tree.closest_hit(ray, 0, rt::infinity, hit)) { /* hit.t, hit.id */ }
+//     const bool blocked = tree.any_hit(shadow_ray, 0, 1);
 //
 // Traversal keeps a fixed-size stack of children with their entry distances
 // (no allocation per ray) and skips an entry whose distance is beyond the
-// closest hit found meanwhile; any() returns at the first hit and pushes
+// closest hit found meanwhile; any_hit() returns at the first hit and pushes
 // children unsorted (their order cannot change its answer). The next child is
 // chosen by one jump on the mask of children met, whose cases know their
 // children at compile time (descend.hpp): on coherent rays the jump is
@@ -98,7 +98,7 @@ public:
         stats_.primitives = count;
         if (count == 0)
             return;
-        if (count >= std::size_t(leaf_flag))
+        if (count >= std::size_t(detail::leaf_flag))
             throw error("expected at most 2^31 - 1 primitives in one BVH, found " + std::to_string(count));
         check(options);
         bvh_options used = options;
@@ -160,38 +160,38 @@ public:
     }
 
     /// The closest hit in [tmin, tmax] by replaces(), or false.
-    bool closest(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    bool closest_hit(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         return traverse<false, false>(r, tmin, tmax, best);
     }
 
     /// Whether anything is hit in [tmin, tmax]; stops at the first hit found.
-    bool any(const ray& r, real tmin, real tmax) const
+    bool any_hit(const ray& r, real tmin, real tmax) const
     {
         primitive_hit unused;
         return traverse<true, false>(r, tmin, tmax, unused);
     }
 
-    /// closest() with the node and leaf tests done one value at a time (the
-    /// fallback where SSE is missing), for the tests to compare with closest().
-    bool closest_scalar(const ray& r, real tmin, real tmax, primitive_hit& best) const
+    /// closest_hit() with the node and leaf tests done one value at a time (the
+    /// fallback where SSE is missing), for the tests to compare with closest_hit().
+    bool closest_hit_scalar(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         return traverse<false, true>(r, tmin, tmax, best);
     }
 
-    /// any() one value at a time, as closest_scalar.
-    bool any_scalar(const ray& r, real tmin, real tmax) const
+    /// any_hit() one value at a time, as closest_hit_scalar.
+    bool any_hit_scalar(const ray& r, real tmin, real tmax) const
     {
         primitive_hit unused;
         return traverse<true, true>(r, tmin, tmax, unused);
     }
 
-    const detail::large_array<bvh_node>& nodes() const { return nodes_; }
+    const detail::large_array<detail::bvh_node>& nodes() const { return nodes_; }
     /// The leaves' primitives as blocks of four, in the order the nodes meet
     /// the leaves (a leaf's reference in bvh_node::child is leaf_flag | its
     /// first block); a primitive that spatial splits cut appears once per leaf
     /// that holds a piece of it.
-    const detail::large_array<triangle_block>& blocks() const
+    const detail::large_array<detail::triangle_block>& blocks() const
     {
         return blocks_;
     }
@@ -232,12 +232,12 @@ private:
         std::vector<leaf_blocks> leaves;
         leaves.reserve(stats_.leaves);
         std::size_t block_count = 0;
-        for (bvh_node& node : nodes_)
+        for (detail::bvh_node& node : nodes_)
             for (int c = 0; c < bvh_width; ++c) {
-                if (!(node.child[c] & leaf_flag) || node.count[c] == 0)
+                if (!(node.child[c] & detail::leaf_flag) || node.count[c] == 0)
                     continue;
-                leaves.push_back(leaf_blocks{node.child[c] & ~leaf_flag, node.count[c], std::uint32_t(block_count)});
-                node.child[c] = leaf_flag | std::uint32_t(block_count);
+                leaves.push_back(leaf_blocks{node.child[c] & ~detail::leaf_flag, node.count[c], std::uint32_t(block_count)});
+                node.child[c] = detail::leaf_flag | std::uint32_t(block_count);
                 block_count += (node.count[c] + 3) / 4;
             }
         blocks_.resize(block_count); // not written yet: every block is assigned below
@@ -246,8 +246,8 @@ private:
             [&](std::size_t begin, std::size_t end) {
                 for (std::size_t l = begin; l < end; ++l) {
                     // the primitives are read in leaf order, scattered over
-                    // prims: ask for those of a leaf 8 ahead (bunny-loop2's
-                    // blocks: 88 ms to 63 ms on one thread)
+                    // prims: ask for those of a leaf 8 ahead, so they are in
+                    // cache when its turn comes
                     if (l + 8 < end)
                         for (std::uint32_t k = 0; k < leaves[l + 8].count && k < 8; ++k)
                             detail::prefetch(&prims[items[leaves[l + 8].first_item + k].index]);
@@ -257,14 +257,14 @@ private:
                         const std::uint32_t n = std::min<std::uint32_t>(4, leaf.count - done);
                         for (std::uint32_t lane = 0; lane < n; ++lane)
                             lanes[lane] = &prims[items[leaf.first_item + done + lane].index];
-                        blocks_[leaf.first_block + done / 4] = RT_BVH_ABI::pack_triangle_block(lanes, n); // (layout.hpp)
+                        blocks_[leaf.first_block + done / 4] = detail::RT_BVH_ABI::pack_triangle_block(lanes, n); // (layout.hpp)
                     }
                 }
             },
             1024);
     }
 
-    template <bool any_hit, bool scalar>
+    template <bool stop_at_first, bool scalar>
     bool traverse(const ray& r, real tmin, real tmax, primitive_hit& best) const
     {
         if (nodes_.empty())
@@ -278,25 +278,25 @@ private:
         real closest_t = tmax; // a hit must have t <= closest_t: tmax, then the closest hit so far
         std::uint32_t child = 0, count = 0; // the root
         for (;;) {
-            if (!(child & leaf_flag)) {
-                const bvh_node& node = nodes_[child];
+            if (!(child & detail::leaf_flag)) {
+                const detail::bvh_node& node = nodes_[child];
                 alignas(32) real tnear[bvh_width];
                 const int mask = scalar ? detail::intersect_children_scalar(node, nr, tmin, closest_t, tnear)
                                         : detail::intersect_children(node, nr, tmin, closest_t, tnear);
                 if (mask != 0) { // one jump on the mask (descend.hpp)
-                    detail::descend<any_hit>(mask, node, tnear, stack, top, child, count);
+                    detail::descend<stop_at_first>(mask, node, tnear, stack, top, child, count);
                     continue;
                 }
             } else {
                 // a leaf: its blocks of four, each tested at once
                 // (leaf_test.hpp); a block's hits are taken by replaces(),
                 // so the closest hit does not depend on the order of the lanes
-                const triangle_block* block = blocks_.data() + (child & ~leaf_flag);
+                const detail::triangle_block* block = blocks_.data() + (child & ~detail::leaf_flag);
                 for (std::uint32_t done = 0; done < count; done += 4, ++block) {
                     detail::block_hits hits;
                     int mask = scalar ? detail::intersect_block_scalar(*block, wr, tmin, closest_t, hits)
-                                      : detail::intersect_block<!any_hit>(*block, lr, wr, tmin, closest_t, hits);
-                    if (mask != 0 && any_hit)
+                                      : detail::intersect_block<!stop_at_first>(*block, lr, wr, tmin, closest_t, hits);
+                    if (mask != 0 && stop_at_first)
                         return true;
                     if (mask != 0) {
                         // the block's closest lane, then one decision against
@@ -328,9 +328,9 @@ private:
                         for (int j = 0; j < 4; ++j)
                             p.v[j] = block->v[j][lane];
                         primitive_hit h;
-                        if (intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
+                        if (detail::intersect_packed(p, r, wr, tmin, closest_t, h) && (!found || replaces(h, best))) {
                             best = h;
-                            if (any_hit)
+                            if (stop_at_first)
                                 return true;
                             found = true;
                             closest_t = h.t;
@@ -339,7 +339,7 @@ private:
                 }
             }
             // the next entry on the stack that can still hold a hit at t <= closest_t
-            const real cut = closest_t * slab_far_factor;
+            const real cut = closest_t * slab_robust_far_factor;
             for (;;) {
                 if (top == 0)
                     return found;
@@ -353,8 +353,8 @@ private:
         }
     }
 
-    detail::large_array<bvh_node> nodes_;          // large_array: huge pages (parallel_fill.hpp)
-    detail::large_array<triangle_block> blocks_;
+    detail::large_array<detail::bvh_node> nodes_;  // large_array: huge pages (parallel_fill.hpp)
+    detail::large_array<detail::triangle_block> blocks_;
     bool has_spheres_ = false;
     bvh_stats stats_;
 };

@@ -3,8 +3,8 @@
 // (run-time dispatch).
 //
 // A program built as most are (-O2, no -march) targets x86-64's SSE2 and gets
-// 4-wide nodes (layout.hpp), which cost 10-50% of the 8-wide path's speed on
-// an AVX2 machine (docs/performance.md, experiment 6). Where RT_BVH_DISPATCH
+// 4-wide nodes (layout.hpp), slower than the 8-wide path on an AVX2 machine
+// (docs/architecture.md, "Figures behind the comments"). Where RT_BVH_DISPATCH
 // is 1 (bvh/abi_begin.hpp: x86-64, g++, clang++ or MSVC, rt::real = float, the
 // target without AVX2, RT_BVH_AVX2 not set), this file compiles the
 // width-dependent headers (layout, node_test, descend, leaf_test,
@@ -20,7 +20,7 @@
 //    here reads it). MSVC compiles AVX2 intrinsics in any function and needs
 //    none (not checked in CI);
 //  - in the namespaces rt::bvh_w8 and rt::detail::bvh_w8, not inline, so that
-//    rt::bvh, rt::bvh_node... stay the unit's 4-wide ones (layout.hpp links
+//    rt::bvh, rt::detail::bvh_node... stay the unit's 4-wide ones (layout.hpp links
 //    the section's names to its own width).
 //
 // Why it is safe:

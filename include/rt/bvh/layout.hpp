@@ -46,6 +46,13 @@ RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begi
 /// Children per node: 8 where AVX2 is there (RT_BVH_AVX2), else 4.
 constexpr int bvh_width = RT_BVH_AVX2 ? 8 : 4;
 
+} // namespace RT_BVH_ABI
+
+namespace detail {
+RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
+
+using ::rt::RT_BVH_ABI::bvh_width; // this width's, found before rt's inline one
+
 /// Up to four primitives of one leaf as the SIMD leaf test reads them (see the
 /// top of this file): the triangles' corners as a structure of arrays,
 /// v[3 corner + axis][lane] (row 0 is a.x of the four triangles, row 4 b.y),
@@ -78,22 +85,20 @@ struct alignas(64) bvh_node {
 constexpr std::uint32_t leaf_flag = 0x80000000u;
 
 } // namespace RT_BVH_ABI
+} // namespace detail
 
 #if defined(RT_BVH_AVX2_SECTION)
 // The AVX2 section of bvh/dispatch.hpp opens rt::bvh_w8 and rt::detail::bvh_w8
 // as plain namespaces (rt::bvh stays this unit's 4-wide tree), so a name
 // looked up from them reaches the inline bvh_w4 before anything else in rt.
 // These declarations make them find their own width first: its detail code
-// the public types (a using-declaration is found before the enclosing
-// namespaces), and its public code, through detail::, its own detail before
+// rt's (its bvh_width is declared at the top of its detail section, and a
+// using-declaration is found before the enclosing namespaces), and its public
+// code, through detail::, its own detail before
 // rt::detail (a qualified lookup follows a namespace's using-directives only
 // for names it does not hold).
 namespace detail {
 namespace RT_BVH_ABI {
-using ::rt::RT_BVH_ABI::bvh_node;
-using ::rt::RT_BVH_ABI::bvh_width;
-using ::rt::RT_BVH_ABI::leaf_flag;
-using ::rt::RT_BVH_ABI::triangle_block;
 using namespace ::rt::detail;
 } // namespace RT_BVH_ABI
 } // namespace detail
@@ -112,9 +117,9 @@ RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begi
 /// the same bits (the tests compare the BVH's hit records, which read these
 /// normals, with the flat list's, which compute them), and the zero vector
 /// for a sphere's or an unused lane (NaN corners, as for corners on one
-/// line). A build computes one normal per triangle: one at a time, its
-/// square root and division were 5-7% of a one-thread build
-/// (docs/performance.md, experiment 6). Returns false where AVX is not there
+/// line). A build computes one normal per triangle, four at a time here
+/// because the square roots and divisions one at a time were a visible part
+/// of a build (docs/performance.md, experiment 6). Returns false where AVX is not there
 /// (the caller then calls triangle_normal lane by lane).
 inline bool block_normals(triangle_block& b)
 {
@@ -149,11 +154,6 @@ inline bool block_normals(triangle_block& b)
 #endif
 }
 
-} // namespace RT_BVH_ABI
-} // namespace detail
-
-RT_BVH_ABI_INLINE namespace RT_BVH_ABI { // this width's fast path (bvh/abi_begin.hpp)
-
 /// The block of the primitives *lanes[0 .. n), n <= 4.
 inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4], std::size_t n)
 {
@@ -171,7 +171,7 @@ inline triangle_block pack_triangle_block(const packed_primitive* const lanes[4]
         for (int j = 0; j < ((p.id & sphere_flag) ? 4 : 9); ++j)
             b.v[j][lane] = p.v[j];
     }
-    if (detail::block_normals(b))
+    if (block_normals(b)) // unqualified: this width's
         return b;
     for (std::size_t lane = 0; lane < n && lane < 4; ++lane) {
         const packed_primitive& p = *lanes[lane];
@@ -191,8 +191,8 @@ inline triangle_block pack_triangle_block(const packed_primitive* prims, std::si
     return RT_BVH_ABI::pack_triangle_block(lanes, n); // qualified: rt's inline bvh_w4 holds one too (bvh/dispatch.hpp)
 }
 
-
 } // namespace RT_BVH_ABI
+} // namespace detail
 } // namespace rt
 
 #endif // RT_BVH_LAYOUT_W8 / _W4

@@ -98,7 +98,7 @@ inline int intersect_children_scalar(const bvh_node& node, const node_ray& r, re
             t1 = t_far < t1 ? t_far : t1;
         }
         tnear[c] = t0;
-        mask |= (t0 <= t1 * slab_far_factor ? 1 : 0) << c;
+        mask |= (t0 <= t1 * slab_robust_far_factor ? 1 : 0) << c;
     }
     return mask;
 }
@@ -117,7 +117,7 @@ inline int intersect_children_avx2(const bvh_node& node, const node_ray& r, floa
     const __m256 t0 = _mm256_max_ps(near_z, _mm256_max_ps(near_y, _mm256_max_ps(near_x, _mm256_set1_ps(tmin))));
     const __m256 t1 = _mm256_min_ps(far_z, _mm256_min_ps(far_y, _mm256_min_ps(far_x, _mm256_set1_ps(tmax))));
     _mm256_store_ps(tnear, t0);
-    return _mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(float(slab_far_factor))), _CMP_LE_OQ));
+    return _mm256_movemask_ps(_mm256_cmp_ps(t0, _mm256_mul_ps(t1, _mm256_set1_ps(float(slab_robust_far_factor))), _CMP_LE_OQ));
 }
 #elif RT_BVH_SSE
 /// The same test with SSE, one child per lane. _mm_max_ps(a, b) is exactly
@@ -136,7 +136,7 @@ inline int intersect_children_sse(const bvh_node& node, const node_ray& r, float
     const __m128 t0 = _mm_max_ps(near_z, _mm_max_ps(near_y, _mm_max_ps(near_x, _mm_set1_ps(tmin))));
     const __m128 t1 = _mm_min_ps(far_z, _mm_min_ps(far_y, _mm_min_ps(far_x, _mm_set1_ps(tmax))));
     _mm_storeu_ps(tnear, t0);
-    return _mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(float(slab_far_factor)))));
+    return _mm_movemask_ps(_mm_cmple_ps(t0, _mm_mul_ps(t1, _mm_set1_ps(float(slab_robust_far_factor)))));
 }
 #endif
 

@@ -9,7 +9,7 @@
 //
 //     const rt::packed_primitive p = rt::pack_triangle(a, b, c, 0);
 //     rt::primitive_hit hit;
-//     if (rt::closest_flat({p}, ray, 0, rt::infinity, hit)) { /* hit.t, hit.b0 ... */ }
+//     if (rt::closest_hit_flat({p}, ray, 0, rt::infinity, hit)) { /* hit.t, hit.b0 ... */ }
 #pragma once
 
 #include <cstdint>
@@ -100,6 +100,8 @@ inline bool replaces(const primitive_hit& candidate, const primitive_hit& best)
     return replaces(candidate.t, candidate.id, best);
 }
 
+namespace detail {
+
 /// Intersects one packed primitive with the library's default methods: the
 /// watertight triangle test and rt::hit_sphere.
 inline bool intersect_packed(const packed_primitive& p, const ray& r, const watertight_ray& w, real tmin, real tmax,
@@ -131,16 +133,18 @@ inline bool intersect_packed(const packed_primitive& p, const ray& r, const wate
     return true;
 }
 
+} // namespace detail
+
 /// The flat list over packed primitives: every primitive tested, the closest
 /// kept by replaces(). For scenes too small to pay for a BVH.
-inline bool closest_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax,
+inline bool closest_hit_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax,
                          primitive_hit& best)
 {
     const watertight_ray w = make_watertight_ray(r);
     bool found = false;
     for (const packed_primitive& p : prims) {
         primitive_hit h;
-        if (intersect_packed(p, r, w, tmin, found ? best.t : tmax, h) && (!found || replaces(h, best))) {
+        if (detail::intersect_packed(p, r, w, tmin, found ? best.t : tmax, h) && (!found || replaces(h, best))) {
             best = h;
             found = true;
         }
@@ -149,12 +153,12 @@ inline bool closest_flat(const std::vector<packed_primitive>& prims, const ray& 
 }
 
 /// Whether any packed primitive is hit in [tmin, tmax].
-inline bool any_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax)
+inline bool any_hit_flat(const std::vector<packed_primitive>& prims, const ray& r, real tmin, real tmax)
 {
     const watertight_ray w = make_watertight_ray(r);
     primitive_hit h;
     for (const packed_primitive& p : prims)
-        if (intersect_packed(p, r, w, tmin, tmax, h))
+        if (detail::intersect_packed(p, r, w, tmin, tmax, h))
             return true;
     return false;
 }

@@ -16,8 +16,8 @@
 // where the kernel offers them, as Embree's allocator does:
 // common/sys/alloc.cpp, os_malloc). With 4 KB pages the second-level TLB
 // reaches 6 MB (1,536 entries), so incoherent rays through a larger tree wait
-// for page walks (bunny-loop2's, 85 MB, gain 15-20%), and a huge page is
-// cleared at a fifth of the cost of 512 small ones.
+// for page walks, and a huge page is cleared faster than 512 small ones (the
+// figures: docs/architecture.md, "Figures behind the comments").
 //
 //     std::vector<T, rt::detail::default_init_allocator<T>> out(n); // nothing written yet
 //     rt::detail::fill_in_parallel(n, threads, [&](std::size_t begin, std::size_t end) {

@@ -294,8 +294,8 @@ private:
             // parameter range there (Liang, Barsky, "A New Concept and Method
             // for Line Clipping", ACM TOG 3(1), 1984); the ends of the pieces
             // are the corners in the slice and the crossings of its planes.
-            // Branches on the edges' slices were mispredicted, a third of the
-            // search's time (docs/performance.md, experiment 6).
+            // Branches on the edges' slices were mispredicted
+            // (docs/performance.md, experiment 6).
             const __m128 ux = _mm_setr_ps(p.v[0], p.v[3], p.v[6], p.v[6]);
             const __m128 uy = _mm_setr_ps(p.v[1], p.v[4], p.v[7], p.v[7]);
             const __m128 uz = _mm_setr_ps(p.v[2], p.v[5], p.v[8], p.v[8]);
