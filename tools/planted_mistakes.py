@@ -107,7 +107,7 @@ MISTAKES: List[Mistake] = [
        "field of view to window keeps the aspect ratio", ["the field of view not halved"]),
     _m(2, "the direction not normalised in `direction_to_color`",
        [("include/rt/ray_image.hpp", "const vec3 unit = glm::normalize(d);", "const vec3 unit = d;")],
-       "direction to colour maps", ["normalise the direction first"]),
+       "direction to color maps", ["normalise the direction first"]),
     _m(2, "samples in [0, 1) instead of pixel (i, j)",
        [(SAMPLING, "positions.emplace_back(real(i) + (real(a) + xi1) / real(n), real(j) + (real(b) + xi2) / real(n));",
          "positions.emplace_back((real(a) + xi1) / real(n), (real(b) + xi2) / real(n));\n"
@@ -230,10 +230,10 @@ MISTAKES: List[Mistake] = [
        "reflect: same length", ["d - 2 (d.n) n"]),
     _m(7, "No depth cap",
        [(RAYTRACER, "if (mirror && depth < s.max_depth) {", "if (mirror) {")],
-       "a mirror shows km times the colour", ["depth < s.max_depth"]),
+       "a mirror shows km times the color", ["depth < s.max_depth"]),
     _m(7, "`depth <= max_depth`",
        [(RAYTRACER, "if (mirror && depth < s.max_depth) {", "if (mirror && depth <= s.max_depth) {")],
-       "a mirror shows km times the colour", ["depth < s.max_depth"]),
+       "a mirror shows km times the color", ["depth < s.max_depth"]),
     # --- stage 08 ---
     _m(8, "The naive Reinhard",
        [(TONEMAP, "    if (!(x > 0.0f))\n        return 0.0f;\n    if (std::isinf(x)) // inf / inf would be NaN; the limit is 1\n"
