@@ -9,6 +9,9 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
 
 #include <rt/accelerator.hpp>
 #include <rt/emitters.hpp>
@@ -70,8 +73,8 @@ inline rt::scene glowing_sphere(float rho, float le)
     return s;
 }
 
-/// The same with a closed cube of triangles (side 2 at the origin), which
-/// next-event estimation samples: Le / (1 - rho) again.
+/// The same with a closed cube of triangles (side 2 at the origin), glowing
+/// towards the inside, which next-event estimation samples: Le / (1 - rho) again.
 inline rt::scene glowing_cube(float rho, float le)
 {
     rt::scene s;
@@ -84,6 +87,12 @@ inline rt::scene glowing_cube(float rho, float le)
     for (const auto& f : faces) {
         box.triangles.push_back({f[0], f[1], f[2]});
         box.triangles.push_back({f[0], f[2], f[3]});
+    }
+    // each triangle's front (counter-clockwise side), where it glows from, faces the inside
+    for (rt::index3& t : box.triangles) {
+        const rt::vec3 a = box.positions[t[0]], b = box.positions[t[1]], c = box.positions[t[2]];
+        if (glm::dot(glm::cross(b - a, c - a), a + b + c) > 0)
+            std::swap(t[1], t[2]);
     }
     box.material = 0;
     s.shapes.push_back(box);
@@ -112,7 +121,7 @@ inline rt::scene small_cornell()
     quad(v(-1, -1, -1), v(-1, 1, -1), v(-1, 1, 1), v(-1, -1, 1), 1);  // left, red
     quad(v(1, -1, -1), v(1, 1, -1), v(1, 1, 1), v(1, -1, 1), 2);      // right, green
     const float l = 0.25f, h = 0.99f;
-    quad(v(-l, h, -l), v(l, h, -l), v(l, h, l), v(-l, h, l), 3);      // the light
+    quad(v(-l, h, -l), v(l, h, -l), v(l, h, l), v(-l, h, l), 3);      // the light, its front facing down
     // a block 0.6 wide, 0.8 tall: its top and two faces that the camera sees
     quad(v(-0.6f, -0.2f, -0.6f), v(0, -0.2f, -0.6f), v(0, -0.2f, 0), v(-0.6f, -0.2f, 0), 0);
     quad(v(-0.6f, -1, 0), v(0, -1, 0), v(0, -0.2f, 0), v(-0.6f, -0.2f, 0), 0);

@@ -210,7 +210,7 @@ TEST_CASE("solid_angle_pdf: pdf_A d^2 / |cos|, so that the light sampler's 1 / p
                "units are wrong");
 }
 
-TEST_CASE("next_event_estimate: its mean is the light a Lambertian point receives from a glowing square, and 0 from behind")
+TEST_CASE("next_event_estimate: its mean is the light a Lambertian point receives from a glowing square, and 0 from behind either")
 {
     // the point below the centre of a square of side 2a at height h, glowing
     // Le: the light it reflects is rho Le F, F the configuration factor of the
@@ -221,8 +221,9 @@ TEST_CASE("next_event_estimate: its mean is the light a Lambertian point receive
     rt::scene s;
     s.materials.push_back(path_scenes::grey(0, float(le)));
     const auto A = rt::real(a), H = rt::real(h);
-    s.shapes.push_back(rt::triangle{rt::vec3(-A, -A, H), rt::vec3(A, -A, H), rt::vec3(A, A, H), 0});
-    s.shapes.push_back(rt::triangle{rt::vec3(-A, -A, H), rt::vec3(A, A, H), rt::vec3(-A, A, H), 0});
+    // counter-clockwise seen from below: the square glows downwards, towards the point
+    s.shapes.push_back(rt::triangle{rt::vec3(-A, -A, H), rt::vec3(A, A, H), rt::vec3(A, -A, H), 0});
+    s.shapes.push_back(rt::triangle{rt::vec3(-A, -A, H), rt::vec3(-A, A, H), rt::vec3(A, A, H), 0});
     const rt::emitter_list lights = rt::find_emitters(s);
     const double q = a / h, root = std::sqrt(1 + q * q);
     const double F = 4 * (2 * q / root * std::atan(q / root)) / (2 * pi);
@@ -237,10 +238,16 @@ TEST_CASE("next_event_estimate: its mean is the light a Lambertian point receive
         if (back != rt::color(0.0f))
             behind.add([&](std::ostream& o) { o << "the light point " << rt_doctest::text(y.point) << " behind the surface "
                                                 "(normal (0, 0, -1)) gave " << rt_doctest::text(back); });
+        const rt::color above = rt::next_event_estimate(rt::color(float(rho)), rt::vec3(0, 0, 2 * H), rt::vec3(0, 0, -1), y);
+        if (above != rt::color(0.0f))
+            behind.add([&](std::ostream& o) { o << "the point (0, 0, 2) above the light, which glows downwards (y.normal "
+                                                << rt_doctest::text(y.normal) << "), got " << rt_doctest::text(above)
+                                                << " from " << rt_doctest::text(y.point); });
     }
     check_mean("the light reflected from the square, rho Le F =", reflected, rho * le * F,
                "the estimate is (rho / pi) Le cos(theta_x) / pdf_w with pdf_w = pdf_A d^2 / |cos(theta_y)|");
-    check_none(behind, "expected 0 from a light below the surface (cos(theta_x) <= 0): it cannot light that side");
+    check_none(behind, "expected 0 from a light below the surface (cos(theta_x) <= 0) and for a point behind the light "
+                       "(y.normal . w >= 0): a triangle glows from its front only");
 }
 
 TEST_CASE("power_heuristic: pdf_a^2 / (pdf_a^2 + pdf_b^2), the two weights of a direction adding up to 1")

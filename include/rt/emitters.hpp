@@ -14,7 +14,11 @@
 // Spheres that glow are not sampled: a path meets them, as it meets the
 // background (the light of a uniform environment).
 //
-// Emission is two-sided, as rt's triangles are: Le leaves both faces.
+// A triangle glows from its front, the side from which its corners a, b, c
+// turn counter-clockwise (normal (b - a) x (c - a), triangle_shape.hpp): the
+// Cornell box's light faces down into the box, and nothing leaves its back
+// into the thin gap under the ceiling. A sphere glows from both sides, so
+// that the inside of a glowing sphere is lit.
 //
 //     const rt::emitter_list lights = rt::find_emitters(s);
 //     const rt::emitter_sample y = rt::sample_emitters(lights, xi0, xi1, xi2); // y.point, y.pdf_area
@@ -40,7 +44,7 @@ namespace rt {
 /// One glowing triangle.
 struct emitter_triangle {
     vec3 a{0}, b{0}, c{0};
-    color emission{0.0f};  ///< Le, leaving both faces
+    color emission{0.0f};  ///< Le, leaving its front
 };
 
 /// Every glowing triangle of a scene, with the running sum of their areas.
@@ -52,8 +56,9 @@ struct emitter_list {
     bool empty() const { return triangles.empty() || !(total_area > 0); }
 };
 
-/// A point drawn on the emitters: where, the unit normal of its triangle,
-/// its emission, and the density pdf_A = 1 / A per unit area.
+/// A point drawn on the emitters: where, the unit normal of its triangle's
+/// front (the side it glows from), its emission, and the density pdf_A = 1 / A
+/// per unit area.
 struct emitter_sample {
     vec3 point{0};
     vec3 normal{0, 1, 0};
@@ -113,6 +118,29 @@ inline emitter_sample sample_emitters(const emitter_list& lights, real xi0, real
     y.emission = t.emission;
     y.pdf_area = real(1 / lights.total_area);
     return y;
+}
+
+/// The radiance Le the surface of `hit` sends back along the ray of direction
+/// d: its material's emission, from the front of a triangle (0 from its back)
+/// and from either side of a sphere.
+inline color emitted_radiance(const scene& s, const hit_record& hit, const vec3& d)
+{
+    const material& m = s.material_of(hit.material);
+    if (!is_emissive(m) || hit.shape >= s.shapes.size())
+        return color(0.0f);
+    const shape& item = s.shapes[hit.shape];
+    vec3 front(0);
+    if (const triangle* t = std::get_if<triangle>(&item)) {
+        front = glm::cross(t->b - t->a, t->c - t->a);
+    } else if (const mesh* mm = std::get_if<mesh>(&item)) {
+        if (hit.primitive >= mm->triangles.size())
+            return color(0.0f);
+        const index3& f = mm->triangles[hit.primitive];
+        front = glm::cross(mm->positions[f[1]] - mm->positions[f[0]], mm->positions[f[2]] - mm->positions[f[0]]);
+    } else {
+        return m.emission; // a sphere: both sides
+    }
+    return glm::dot(front, d) < 0 ? m.emission : color(0.0f);
 }
 
 /// True when the hit is on a triangle that find_emitters lists: next-event

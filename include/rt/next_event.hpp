@@ -12,8 +12,9 @@
 // theta_y the angle at y between its normal and the direction back to x. For a
 // Lambertian x of albedo rho with normal n, w = (y - x) / d, the estimate is
 //     f Le cos(theta_x) / pdf_w,   f = rho / pi,  cos(theta_x) = n . w,
-// and 0 when y is behind x (cos(theta_x) <= 0) or seen edge-on. The caller
-// traces the shadow ray and weighs the estimate (mis.hpp).
+// and 0 when y is behind x (cos(theta_x) <= 0), or x behind y (the light
+// glows from its front only: y.normal . w >= 0), or y seen edge-on. The
+// caller traces the shadow ray and weighs the estimate (mis.hpp).
 //
 //     const rt::emitter_sample y = rt::sample_emitters(lights, xi0, xi1, xi2);
 //     const rt::color direct = rt::next_event_estimate(m.kd, hit.point, hit.normal, y);
@@ -47,20 +48,22 @@ inline real solid_angle_pdf(real pdf_area, real distance, real cos_y)
 /// The next-event estimate f Le cos(theta_x) / pdf_w at the point x (unit
 /// normal n, on the side of the light that counts) of a Lambertian surface of
 /// albedo `albedo`, for the emitter point y, before the shadow ray and the MIS
-/// weight: 0 when y is below x's surface or seen edge-on.
+/// weight: 0 when y is below x's surface, when x is behind the light (y.normal
+/// is its front) or when y is seen edge-on.
 inline color next_event_estimate(const color& albedo, const vec3& x, const vec3& n, const emitter_sample& y)
 {
     // RT_EXERCISE_BEGIN(stage11: next-event estimation)
-    // hint: w = (y.point - x) / d; cos_x = n . w; cos_y = y.normal . w (either side glows)
+    // hint: w = (y.point - x) / d; cos_x = n . w; the light faces x when y.normal . w < 0
     const vec3 to_light = y.point - x;
     const real d = glm::length(to_light);
     if (!(d > 0) || !(y.pdf_area > 0))
         return color(0.0f);
     const vec3 w = to_light / d;
     const real cos_x = glm::dot(n, w);
-    const real pdf_w = solid_angle_pdf(y.pdf_area, d, glm::dot(y.normal, w));
-    if (!(cos_x > 0) || !(pdf_w > 0))
+    const real cos_y = glm::dot(y.normal, w);
+    if (!(cos_x > 0) || !(cos_y < 0))
         return color(0.0f);
+    const real pdf_w = solid_angle_pdf(y.pdf_area, d, cos_y);
     return lambertian_brdf(albedo) * y.emission * float(cos_x / pdf_w);
     // RT_EXERCISE_END
 }

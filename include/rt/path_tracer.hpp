@@ -125,7 +125,8 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
         v.normal = hit.normal;
         v.material = hit.material;
         v.throughput = throughput;
-        if (is_emissive(m)) {
+        const color glow = emitted_radiance(s, hit, r.direction);
+        if (glow != color(0.0f)) {
             const bool sampled = hit_sampled_emitter(s, hit);
             real pdf_light = 0;
             if (bounce > 0 && sampled && aim) {
@@ -133,9 +134,9 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
                 const real cos_y = glm::dot(hit.geometric_normal, glm::normalize(r.direction));
                 pdf_light = solid_angle_pdf(real(1 / lights.total_area), d, cos_y);
             }
-            v.emitted = m.emission;
+            v.emitted = glow;
             v.emitted_weight = emission_weight(o.strategy, bounce, sampled, pdf_before, pdf_light);
-            v.added += throughput * m.emission * float(v.emitted_weight);
+            v.added += throughput * glow * float(v.emitted_weight);
         }
         const vec3 n = hit.normal; // faces the ray: the side the path is on
         const bool last = bounce >= o.max_bounces;
