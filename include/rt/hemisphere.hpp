@@ -7,8 +7,8 @@
 // densities over the hemisphere about the z axis, from two uniform numbers in
 // [0, 1):
 //
-// uniform (given; PBR 4th ed., sec. A.5.2): z = xi1, phi = 2 pi xi2, p = 1 / (2 pi);
-// cosine-weighted (the exercise; Malley's method, PBR 4th ed., sec. A.5.3):
+// uniform (given; PBR 4th ed., sec. A.5; 3rd ed., sec. 13.6.1): z = xi1, phi = 2 pi xi2, p = 1 / (2 pi);
+// cosine-weighted (the exercise; Malley's method, PBR 4th ed., sec. A.5; 3rd ed., sec. 13.6.3):
 // a point (x, y) spread evenly over the unit disk (concentric_disk), lifted
 // onto the hemisphere, z = sqrt(1 - x^2 - y^2). The density is
 //     p(w) = cos(theta) / pi,   cos(theta) = w.z,
@@ -34,7 +34,7 @@ namespace rt {
 /// pi, in rt::real.
 constexpr real pi_real = real(3.14159265358979323846);
 
-/// A unit direction with z >= 0, uniform over the hemisphere (PBR 4th ed., sec. A.5.2).
+/// A unit direction with z >= 0, uniform over the hemisphere (PBR 4th ed., sec. A.5).
 inline vec3 uniform_hemisphere(real xi1, real xi2)
 {
     const real z = xi1;
@@ -51,7 +51,7 @@ inline real uniform_hemisphere_pdf()
 
 /// A unit direction with z >= 0 whose density is cos(theta) / pi: a point of
 /// the unit disk from (xi1, xi2), even over its area, lifted onto the
-/// hemisphere (Malley's method, PBR 4th ed., sec. A.5.3).
+/// hemisphere (Malley's method, PBR 4th ed., sec. A.5).
 inline vec3 cosine_hemisphere(real xi1, real xi2)
 {
     // RT_EXERCISE_BEGIN(stage11: cosine-weighted hemisphere sampling)
