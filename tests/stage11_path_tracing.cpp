@@ -122,10 +122,13 @@ TEST_CASE("cosine_hemisphere_pdf: cos(theta) / pi, a density over the hemisphere
         CHECK(total == doctest::Approx(1).epsilon(1e-4));
     }
     {
-        INFO("expected p = cos(theta) / pi: at the normal 1/pi = " << 1 / pi << ", found "
-             << rt::cosine_hemisphere_pdf(1) << "; below the surface 0, found " << rt::cosine_hemisphere_pdf(rt::real(-0.5)));
-        CHECK(double(rt::cosine_hemisphere_pdf(1)) == doctest::Approx(1 / pi).epsilon(1e-5));
-        CHECK(double(rt::cosine_hemisphere_pdf(rt::real(-0.5))) == 0);
+        // computed before INFO, which doctest evaluates only when it reports
+        const double at_normal = double(rt::cosine_hemisphere_pdf(1));
+        const double below = double(rt::cosine_hemisphere_pdf(rt::real(-0.5)));
+        INFO("expected p = cos(theta) / pi: at the normal 1/pi = " << 1 / pi << ", found " << at_normal
+             << "; below the surface 0, found " << below);
+        CHECK(at_normal == doctest::Approx(1 / pi).epsilon(1e-5));
+        CHECK(below == 0);
     }
     // with the sampler: cos / p is pi for every direction, and the estimate of
     // int cos^2 dw = 2 pi / 3 is right
@@ -252,9 +255,10 @@ TEST_CASE("next_event_estimate: its mean is the light a Lambertian point receive
 
 TEST_CASE("power_heuristic: pdf_a^2 / (pdf_a^2 + pdf_b^2), the two weights of a direction adding up to 1")
 {
-    INFO("expected w(2, 1) = 4 / 5 = 0.8, found " << rt::power_heuristic(2, 1)
+    const double w21 = double(rt::power_heuristic(2, 1)); // before INFO, which is evaluated when it reports
+    INFO("expected w(2, 1) = 4 / 5 = 0.8, found " << w21
          << " (2/3 is the balance heuristic pdf_a / (pdf_a + pdf_b), Veach's beta = 1; the power heuristic squares)");
-    CHECK(double(rt::power_heuristic(2, 1)) == doctest::Approx(0.8));
+    CHECK(w21 == doctest::Approx(0.8));
     CHECK(double(rt::power_heuristic(1, 1)) == doctest::Approx(0.5));
     CHECK(double(rt::power_heuristic(3, 0)) == doctest::Approx(1));
     CHECK(double(rt::power_heuristic(0, 3)) == doctest::Approx(0));
@@ -280,17 +284,17 @@ TEST_CASE("emission_weight and light_sample_weight: the light of an emitter is c
              << verdict);
         CHECK(hit + aimed == doctest::Approx(1).epsilon(1e-5));
         // the camera's own view of an emitter and emitters nothing aims at count fully
+        const double seen = double(rt::emission_weight(kind, 0, true, pdf_bsdf, pdf_light));
+        const double unsampled = double(rt::emission_weight(kind, 3, false, pdf_bsdf, pdf_light));
         INFO("expected weight 1 for the emission the camera ray meets (bounce 0) and for emitters next-event "
-             "estimation cannot aim at (a glowing sphere), found "
-             << rt::emission_weight(kind, 0, true, pdf_bsdf, pdf_light) << " and "
-             << rt::emission_weight(kind, 3, false, pdf_bsdf, pdf_light));
-        CHECK(double(rt::emission_weight(kind, 0, true, pdf_bsdf, pdf_light)) == 1);
-        CHECK(double(rt::emission_weight(kind, 3, false, pdf_bsdf, pdf_light)) == 1);
+             "estimation cannot aim at (a glowing sphere), found " << seen << " and " << unsampled);
+        CHECK(seen == 1);
+        CHECK(unsampled == 1);
     }
+    const double mis_hit = double(rt::emission_weight(path_strategy::mis, 1, true, pdf_bsdf, pdf_light));
     INFO("expected MIS to weigh the path's hit by the power heuristic of (pdf_bsdf, pdf_light) = "
-         << 0.16 / (0.16 + 1.69) << ", found " << rt::emission_weight(path_strategy::mis, 1, true, pdf_bsdf, pdf_light));
-    CHECK(double(rt::emission_weight(path_strategy::mis, 1, true, pdf_bsdf, pdf_light)) ==
-          doctest::Approx(0.16 / (0.16 + 1.69)).epsilon(1e-4));
+         << 0.16 / (0.16 + 1.69) << ", found " << mis_hit);
+    CHECK(mis_hit == doctest::Approx(0.16 / (0.16 + 1.69)).epsilon(1e-4));
     CHECK(double(rt::light_sample_weight(path_strategy::nee, pdf_light, pdf_bsdf)) == 1);
 }
 
@@ -338,13 +342,14 @@ TEST_CASE("pixel_converged: CS184's rule, 1.96 sigma / sqrt(n) <= max_tolerance 
     rt::pixel_statistics two;
     two.add(1);
     two.add(3);
+    const bool at_099 = rt::pixel_converged(two, 0.99), at_097 = rt::pixel_converged(two, 0.97);
     INFO("samples 1 and 3: mu = 2, sigma = sqrt(2), I = 1.96; expected converged with max_tolerance 0.99 "
-         "(I <= 1.98), found " << std::string(rt::pixel_converged(two, 0.99) ? "converged" : "not converged")
-         << "; not converged with 0.97 (I > 1.94), found " << std::string(rt::pixel_converged(two, 0.97) ? "converged" : "not converged")
+         "(I <= 1.98), found " << std::string(at_099 ? "converged" : "not converged")
+         << "; not converged with 0.97 (I > 1.94), found " << std::string(at_097 ? "converged" : "not converged")
          << ". (sigma^2 with n instead of n - 1 gives I = 1.39 and converges at 0.97; the variance for sigma, or "
             "no sqrt(n), gives I = 2.77 and never converges at 0.99)");
-    CHECK(rt::pixel_converged(two, 0.99));
-    CHECK_FALSE(rt::pixel_converged(two, 0.97));
+    CHECK(at_099);
+    CHECK_FALSE(at_097);
     rt::pixel_statistics one, flat, dark;
     one.add(5);
     for (int k = 0; k < 8; ++k) {
