@@ -23,6 +23,7 @@
 #include <rt/path_tracer.hpp>
 #include <rt/radiance.hpp> // camera_rays
 #include <rt/scene.hpp>
+#include <rt/scene_input.hpp> // has_obj_extension
 
 #include "stage_main.hpp"
 #include "support.hpp"
@@ -161,7 +162,9 @@ int main(int argc, char** argv)
             return 0; // --help
         if (!pixel.wanted) {
             stage::check_image_output(output);
-            stage::check_input_and_outputs(*scene_path, "a scene or OBJ file", {stage::file_argument(output)});
+            stage::check_input_and_outputs(
+                *scene_path, rt::has_obj_extension(stage::file_argument(*scene_path)) ? "an OBJ file" : "a scene file",
+                {stage::file_argument(output)});
         }
         const rt::scene s = stage::load_input(*scene_path);
         const rt::accelerator accel(s);
