@@ -229,3 +229,44 @@ TEST_CASE("the Cornell box of ../shared lights itself: its Ke 17 12 4 quad is th
     INFO("expected light on the red wall, found " << path_scenes::describe(up));
     CHECK(up.mean() > 0.1);
 }
+
+TEST_CASE("CS184's adaptive rule stops lit pixels black after one batch with BSDF sampling, never with next-event estimation")
+{
+    // a batch whose samples all missed the light has mu = 0 and sigma = 0, and
+    // 0 <= tolerance * 0 says converged (docs/stages/11-going-further.md): with
+    // cosine sampling only, the small light is found by few paths, so lit
+    // pixels stop black; next-event estimation gives nearly every sample light
+    const rt::scene s = path_scenes::small_cornell();
+    const rt::accelerator accel(s);
+    const rt::emitter_list lights = rt::find_emitters(s);
+    const path_scenes::pinhole camera{12};
+    rt::path_render_options o;
+    o.width = o.height = 12;
+    o.samples_per_pixel = 256;
+    o.seed = 3;
+    o.path.strategy = rt::path_strategy::mis;
+    const rt::path_render_result lit = rt::render_paths(s, accel, lights, camera, o);
+    o.adaptive = true;
+    o.batch = 8;
+    o.max_tolerance = 0.05;
+    int stopped_black[2] = {0, 0}, lit_pixels = 0;
+    const rt::path_strategy kinds[2] = {rt::path_strategy::cosine, rt::path_strategy::nee};
+    for (int k = 0; k < 2; ++k) {
+        o.path.strategy = kinds[k];
+        const rt::path_render_result r = rt::render_paths(s, accel, lights, camera, o);
+        lit_pixels = 0;
+        for (std::size_t i = 0; i < r.samples.size(); ++i) {
+            if (rt::luminance(lit.pixels.pixels[i]) < 0.02)
+                continue;
+            ++lit_pixels;
+            stopped_black[k] += r.samples[i] == o.batch && r.pixels.pixels[i] == rt::color(0.0f) ? 1 : 0;
+        }
+    }
+    MESSAGE("lit pixels " << lit_pixels << ": stopped black after one batch, cosine " << stopped_black[0] << ", nee "
+                          << stopped_black[1]);
+    INFO("expected the rule's failure with cosine sampling (lit pixels stopped black after one batch of 8), found "
+         << stopped_black[0] << " of " << lit_pixels);
+    CHECK(stopped_black[0] > lit_pixels / 10);
+    INFO("expected none with next-event estimation, found " << stopped_black[1]);
+    CHECK(stopped_black[1] == 0);
+}
