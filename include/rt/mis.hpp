@@ -24,9 +24,6 @@
 //     L += throughput * rt::light_sample_weight(strategy, pdf_light, pdf_bsdf) * direct;
 #pragma once
 
-#include <optional>
-#include <string>
-
 #include "config.hpp"
 #include "enum_names.hpp"
 
