@@ -349,6 +349,39 @@ def plot_frame(data, charts):
     save(fig, charts, "frame.png")
 
 
+PATH_COLORS = {"uniform": "tab:red", "cosine": "tab:orange", "nee": "tab:blue", "mis": "tab:green"}
+
+
+def plot_path(data, charts):
+    path = os.path.join(data, "path.csv")
+    if not os.path.exists(path):
+        return print("path: no", path)
+    notes, rows = read(path)
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    for strategy, color in PATH_COLORS.items():
+        for adaptive, style, label in (("no", "-o", "%s"), ("yes", "--s", "%s, adaptive")):
+            pts = [r for r in rows if r["strategy"] == strategy and r["adaptive"] == adaptive]
+            if not pts:
+                continue
+            pts.sort(key=lambda r: num(r["seconds"]))
+            ax.plot([num(r["seconds"]) for r in pts], [num(r["rmse"]) for r in pts], style, color=color,
+                    label=label % strategy, markersize=4)
+            if adaptive == "no":
+                for r in pts:
+                    ax.annotate(r["spp"], (num(r["seconds"]), num(r["rmse"])), fontsize=6, color=color,
+                                xytext=(3, 3), textcoords="offset points")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("render time, seconds (1 thread)")
+    ax.set_ylabel("RMSE against the reference")
+    ax.set_title("Path tracing the Cornell box: noise against time (numbers: samples per pixel)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    footer(fig, notes)
+    save(fig, charts, "path.png")
+
+
 def plot_headline(data, charts):
     """The README's chart: speed against accuracy for the methods a student chooses between."""
     notes, spheres = sphere_rows(data)
@@ -501,7 +534,7 @@ def main():
     args = parser.parse_args()
     os.makedirs(args.charts, exist_ok=True)
     for plot in (plot_sampling, plot_sphere, plot_triangle, plot_groups, plot_acne, plot_embree, plot_frame,
-                 plot_headline, write_tables):
+                 plot_path, plot_headline, write_tables):
         plot(args.data, args.charts)
     return 0
 

@@ -78,6 +78,7 @@ run groups bench_groups "needs include/rt/accelerator.hpp (stage 04)"
 run acne bench_acne "needs include/rt/accelerator.hpp (stage 04)"
 run embree bench_embree "needs Embree 3: apt-get install libembree-dev"
 run frame bench_frame "needs include/rt/accelerator.hpp (stage 04)"
+run path bench_path "needs include/rt/accelerator.hpp (stage 04)"
 
 if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
   echo "==== charts: /usr/bin/python3 bench/plot.py"

@@ -43,6 +43,8 @@
 #include <vector>
 
 #include <rt/accelerator.hpp>
+#include <rt/emitters.hpp>
+#include <rt/path_tracer.hpp>
 #include <rt/camera.hpp>
 #include <rt/dielectric.hpp>
 #include <rt/encoding.hpp>
@@ -67,6 +69,7 @@
 #include "../stages/02_generate_rays/edge.hpp"
 #include "../stages/common/textbook_groups.hpp"
 #include "edge_leaks.hpp"
+#include "path_scenes.hpp"
 #include "reintersect.hpp"
 #include "shadow_acne.hpp"
 #include "slab_cases.hpp"
@@ -355,6 +358,65 @@ std::string penumbra_noise_table()
         out += formatted("\n%7d   %.4f   %.4f", n, std::sqrt(square / trials - mean * mean), std::sqrt(0.25 / n));
     }
     return out;
+}
+
+/// Stage 11: inside the glowing cube (tests/path_scenes.hpp, Le 0.5), the mean
+/// of 2000 paths of each strategy with roulette against Le / (1 - rho): the
+/// table of docs/stages/11-going-further.md.
+std::string glowing_cube_table()
+{
+    std::string out = "rho   Le/(1-rho)   cosine            nee               mis";
+    for (const float rho : {0.4f, 0.7f, 0.9f}) {
+        const rt::scene s = path_scenes::glowing_cube(rho, 0.5f);
+        const rt::accelerator accel(s);
+        const rt::emitter_list lights = rt::find_emitters(s);
+        const rt::ray r{rt::vec3(rt::real(0.1), rt::real(-0.2), 0), glm::normalize(rt::vec3(0.3f, -0.2f, 1))};
+        out += formatted("\n%.1f   %.4f      ", double(rho), 0.5 / (1 - double(rho)));
+        for (const rt::path_strategy kind : {rt::path_strategy::cosine, rt::path_strategy::nee, rt::path_strategy::mis}) {
+            rt::path_options o;
+            o.strategy = kind;
+            o.max_bounces = 1000;
+            const path_scenes::running m = path_scenes::paths_along(s, accel, lights, r, o, 2000, 11);
+            out += formatted("  %.4f +- %.4f", m.mean(), m.error());
+        }
+    }
+    return out;
+}
+
+/// Stage 11: the RMSE of 300 means of N paths inside the glowing cube (rho
+/// 0.6, MIS), and the least-squares slope of log RMSE against log N.
+std::string path_slope_table()
+{
+    const rt::scene s = path_scenes::glowing_cube(0.6f, 0.5f);
+    const rt::accelerator accel(s);
+    const rt::emitter_list lights = rt::find_emitters(s);
+    const rt::ray r{rt::vec3(0), glm::normalize(rt::vec3(0.2f, 0.1f, 1))};
+    rt::path_options o;
+    o.max_bounces = 1000;
+    std::string out = "paths N   RMSE of the mean";
+    std::vector<double> xs, ys;
+    std::uint64_t seed = 100;
+    for (const int n : {16, 64, 256, 1024}) {
+        double squares = 0;
+        for (int k = 0; k < 300; ++k) {
+            const double e = path_scenes::paths_along(s, accel, lights, r, o, n, seed++).mean() - 1.25;
+            squares += e * e;
+        }
+        const double rmse = std::sqrt(squares / 300);
+        out += formatted("\n%7d   %.5f", n, rmse);
+        xs.push_back(std::log(double(n)));
+        ys.push_back(std::log(rmse));
+    }
+    double mx = 0, my = 0, sxy = 0, sxx = 0;
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        mx += xs[i] / double(xs.size());
+        my += ys[i] / double(ys.size());
+    }
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+        sxy += (xs[i] - mx) * (ys[i] - my);
+        sxx += (xs[i] - mx) * (xs[i] - mx);
+    }
+    return out + formatted("\nslope     %.3f", sxy / sxx);
 }
 
 /// Stage 10: the radius in pixels of the circle of confusion of the centre of
@@ -744,6 +806,9 @@ std::map<std::string, figure_function> figures(const fs::path& root)
         const double cos_max = std::sqrt(1 - 1.0 / 25), cos_disc = 2 / std::sqrt(4 + 0.09);
         return formatted("%.6f", (cos_disc - cos_max) / (1 - cos_max));
     };
+    // stage 11: the glowing cube's closed form against each strategy, and the N^-1/2 law
+    all["stage11.glowing_cube.float"] = [] { return glowing_cube_table(); };
+    all["stage11.slope.float"] = [] { return path_slope_table(); };
     all["stage10.soft.red_blur_pixels"] = [root] { return soft_blur_pixels(root, 1); };
     all["stage10.soft.green_blur_pixels"] = [root] { return soft_blur_pixels(root, 2); };
     // the student's groups over the showcase: its items (library), its nodes (the exercise build_groups)

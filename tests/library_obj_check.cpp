@@ -146,6 +146,10 @@ TEST_CASE("MTL colors become rt materials, per face")
     CHECK(mirror.ka == mirror.kd);       // no Ka: as in scene files
     CHECK(mirror.p == rt::material{}.p); // no Ns: the default exponent
     CHECK(mirror.km == rt::color(0.9f)); // illum 3: reflection on, km = Ks
+    CHECK(mirror.emission == rt::color(1.0f)); // Ke: the emitted radiance (stage 11)
+    CHECK(red.emission == rt::color(0.0f));    // no Ke: emits nothing
+    CHECK(!rt::is_emissive(red));
+    CHECK(rt::is_emissive(mirror));
     const rt::mesh& m = loaded.geometry;
     REQUIRE(m.face_materials.size() == 3);
     CHECK(m.face_materials[0] == -1); // before any usemtl: the mesh's own material
@@ -173,9 +177,15 @@ TEST_CASE("the Cornell box: negative indices, quads and its MTL file")
     CHECK(m.triangles[1][2] < 4);
     REQUIRE(m.face_materials.size() == 36);
     CHECK(loaded.materials[std::size_t(m.face_materials[0])].name == "floor");
-    for (const rt::material& mat : loaded.materials)
+    int emitting = 0;
+    for (const rt::material& mat : loaded.materials) {
         if (mat.name == "leftWall")
             CHECK(mat.kd == rt::color(0.63f, 0.065f, 0.05f));
+        if (mat.name == "light")
+            CHECK(mat.emission == rt::color(17, 12, 4)); // Ke 17 12 4: the box lights itself (stage 11)
+        emitting += rt::is_emissive(mat) ? 1 : 0;
+    }
+    CHECK(emitting == 1); // the others say Ke 0 0 0
 }
 
 TEST_CASE("malformed or missing OBJ and MTL files are one-line errors with file:line:col")

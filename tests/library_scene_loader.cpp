@@ -8,6 +8,7 @@
 #include <string>
 #include <variant>
 
+#include <rt/error.hpp>
 #include <rt/scene_loader.hpp>
 
 namespace {
@@ -74,6 +75,25 @@ TEST_CASE("a dielectric: ior and attenuation are read, and its diffuse color def
     CHECK(s.materials[1].attenuation == rt::color(0.0f));
     CHECK_FALSE(rt::is_dielectric(s.materials[2]));
     CHECK(s.materials[2].ior == 0);
+}
+
+TEST_CASE("a material's emission is read (stage 11), defaults to none, and cannot be negative")
+{
+    const rt::scene s = rt::load_scene_from_string("material lamp kd 0.78 0.78 0.78 emission 17 12 4\n"
+                                                   "material matte kd 0.5 0.5 0.5\n");
+    REQUIRE(s.materials.size() == 2);
+    CHECK(s.materials[0].emission == rt::color(17, 12, 4));
+    CHECK(rt::is_emissive(s.materials[0]));
+    CHECK(s.materials[1].emission == rt::color(0.0f));
+    CHECK_FALSE(rt::is_emissive(s.materials[1]));
+    CHECK_FALSE(rt::is_emissive(s.default_material));
+    std::string message = "no error";
+    try {
+        (void)rt::load_scene_from_string("material m emission 1 -2 1\n", "s.scene");
+    } catch (const rt::error& e) {
+        message = e.what();
+    }
+    CHECK(message == "s.scene:1:23: expected a non-negative emission, found -2; colors cannot be negative");
 }
 
 TEST_CASE("comments, blank lines, tabs and quoted paths are understood")

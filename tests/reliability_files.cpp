@@ -205,7 +205,7 @@ const char* const triangle_obj = "v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n";
 /// The programs that read a scene and write one image with -o.
 const std::vector<std::string> image_programs = {"stage02_generate_rays", "stage04_triangle", "stage05_shading",
                                                  "stage06_shadows",       "stage07_reflections", "stage08_output",
-                                                 "stage09_refraction",    "stage10_distribution"};
+                                                 "stage09_refraction",    "stage10_distribution", "stage11_path_tracing"};
 
 std::vector<std::string> programs_to_test(bool with_stage03 = true)
 {

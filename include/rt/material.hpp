@@ -6,8 +6,10 @@
 // FCG sec. 13.1) has an index of refraction ior and an attenuation constant a
 // per unit length inside it (Beer's law). A glossy mirror (stage 10, FCG sec.
 // 13.4.4) reflects around the mirror direction, blurred by the side a of a
-// square of perturbations (glossy.hpp). Defaults are those of
-// docs/scene-format.md: a matte light grey.
+// square of perturbations (glossy.hpp). A surface that glows (stage 11's area
+// lights, an MTL file's Ke) emits the radiance Le from its front side.
+// Defaults are those of docs/scene-format.md: a matte light grey that emits
+// nothing.
 #pragma once
 
 #include <string>
@@ -27,7 +29,14 @@ struct material {
     real ior = 0;    ///< index of refraction of a dielectric (glass 1.5, water 1.33); 0: opaque
     color attenuation{0.0f};  ///< a dielectric's Beer attenuation a per unit length: exp(-a s) is left after s
     real glossy = 0;  ///< a mirror's blur: the side a of the square of perturbations; 0: a perfect mirror
+    color emission{0.0f};  ///< Le, the radiance the surface emits (stage 11); 0: none
 };
+
+/// True for a material that emits light (stage 11): a path that meets it gains Le.
+inline bool is_emissive(const material& m)
+{
+    return m.emission.r > 0 || m.emission.g > 0 || m.emission.b > 0;
+}
 
 /// True for a dielectric (stage 09): light enters it, refracted.
 inline bool is_dielectric(const material& m)

@@ -44,7 +44,8 @@ inline material read_material(statement& line, const std::vector<material>& decl
     bool ambient_given = false, diffuse_given = false;
     source_location km_at{}, attenuation_at{}, glossy_at{};
     bool km_given = false, attenuation_given = false, glossy_given = false;
-    line.options({"ka", "kd", "ks", "p", "km", "ior", "attenuation", "glossy"}, [&](const std::string& option) {
+    line.options({"ka", "kd", "ks", "p", "km", "ior", "attenuation", "glossy", "emission"},
+                 [&](const std::string& option) {
         if (option == "ka") {
             m.ka = line.rgb("ka");
             ambient_given = true;
@@ -71,6 +72,8 @@ inline material read_material(statement& line, const std::vector<material>& decl
             if (!(m.glossy >= 0 && m.glossy <= 4))
                 throw make_error(where, "a glossy blur from 0 to 4", detail::short_number(double(m.glossy)),
                                  "it is the side of the square of perturbed directions: 0.1 is brushed metal");
+        } else if (option == "emission") {
+            m.emission = line.rgb("emission");
         } else if (option == "attenuation") {
             attenuation_at = line.last();
             attenuation_given = true;

@@ -4,8 +4,9 @@
 // Visualizer documentation) is read here, line by line with obj_line's checks:
 //   newmtl name        a material; the statements below it describe it
 //   Ka/Kd/Ks r [g b]   ambient, diffuse and specular colors ("Kd r" is r r r)
+//   Ke r [g b]         the emitted radiance Le (stage 11's area lights)
 //   Ns exponent        the Phong exponent      illum model   0 to 10
-// everything else (Ke, Ni, d, maps) is skipped, its numbers checked. The
+// everything else (Ni, d, maps) is skipped, its numbers checked. The
 // materials are then handed to tinyobjloader by name (mtl_names_reader), so it
 // never parses an MTL file itself and its material ids index the entries read
 // here. obj_loader.hpp maps them to rt::material.
@@ -60,9 +61,9 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
             entries.push_back(entry);
             return;
         }
-        const bool is_color = keyword == "Ka" || keyword == "Kd" || keyword == "Ks";
+        const bool is_color = keyword == "Ka" || keyword == "Kd" || keyword == "Ks" || keyword == "Ke";
         const bool known = is_color || keyword == "Ns" || keyword == "illum";
-        if (!known) { // Ke, Ni, d, Tr, maps ...: not used by rt, but their numbers must fit a float too
+        if (!known) { // Ni, d, Tr, maps ...: not used by rt, but their numbers must fit a float too
             line.check_number_words(false);
             return;
         }
@@ -91,6 +92,8 @@ inline void read_mtl(const std::filesystem::path& path, const source_location& n
                 entry.has_ka = true;
             } else if (keyword == "Kd") {
                 entry.value.kd = c;
+            } else if (keyword == "Ke") {
+                entry.value.emission = c;
             } else {
                 entry.value.ks = c;
             }

@@ -53,8 +53,8 @@
 // The mesh stores only what the file provides: normals (texture coordinates)
 // only when the faces refer to them. Zero-area triangles are dropped and
 // counted in mesh::dropped_degenerate. MTL colors map to rt::material: Ka ka
-// (kd when absent, as in scene files), Kd kd, Ks ks, Ns p, and for the
-// illumination models "reflection on, ray trace on" (illum 3 and 5) km = Ks.
+// (kd when absent, as in scene files), Kd kd, Ks ks, Ns p, Ke emission, and
+// for the illumination models "reflection on, ray trace on" (illum 3 and 5) km = Ks.
 // Names (newmtl, usemtl) are one word, as tinyobjloader reads them.
 #pragma once
 

@@ -78,7 +78,7 @@ namespace {
 const char* controls =
     "Mouse: left drag orbits around the look-at point, right (or middle, or shift + left)\n"
     "drag pans, the wheel zooms.\n"
-    "Keys:  1 shaded  2 normals  3 depth  4 position  5 ray directions\n"
+    "Keys:  1 shaded  2 normals  3 depth  4 position  5 ray directions  6 path traced (stage 11)\n"
     "       m next sampler (auto, center, grid, random, jittered, halton)\n"
     "       f next filter (box, tent, gaussian, mitchell)\n"
     "       ] [ samples per pixel x2 / /2      . , max depth +1 / -1\n"
@@ -162,6 +162,8 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
                                            const rt::encoding& enc)
 {
     const viewer::view& v = done.settings;
+    if (v.path_traced)
+        return {}; // command_line says why there is none
     auto number = [](double value) { return rt::exact_number_text(rt::real(value)); };
     std::vector<std::string> a = {input,
                                   "--width", std::to_string(v.width),
@@ -185,6 +187,9 @@ std::vector<std::string> stage08_arguments(const std::string& input, const viewe
 
 std::string command_line(const std::vector<std::string>& arguments, const std::string& output)
 {
+    if (arguments.empty()) // a path-traced view: no program takes its camera and options
+        return "(none: stage11_path_tracing renders a scene's own camera; the viewer's path-traced view has no "
+               "command line)";
     std::string line = "stage08_output";
     for (const std::string& word : arguments)
         line += ' ' + shell_word(word);
@@ -351,6 +356,12 @@ private:
         case SDLK_3: set_aov(rt::aov_kind::depth); break;
         case SDLK_4: set_aov(rt::aov_kind::position); break;
         case SDLK_5: set_aov(rt::aov_kind::rays); break;
+        case SDLK_6:
+            view_.aov = rt::aov_kind::none;
+            view_.path_traced = true;
+            say("view: path traced (stage 11: MIS, Russian roulette; the glowing triangles and the background light it)");
+            restart();
+            break;
         case SDLK_m: {
             // auto (stage08_output's default for each level), then each sampler
             const std::vector<rt::sampler_kind> kinds = {rt::sampler_kind::center, rt::sampler_kind::grid,
@@ -443,6 +454,7 @@ private:
     void set_aov(rt::aov_kind aov)
     {
         view_.aov = aov;
+        view_.path_traced = false;
         say(std::string("view: ") + rt::name_of(aov));
         restart();
     }
@@ -501,7 +513,7 @@ private:
             return;
         titled_ = now;
         std::ostringstream title;
-        title << "rt viewer - " << rt::name_of(view_.aov) << " - ";
+        title << "rt viewer - " << (view_.path_traced ? "path traced" : rt::name_of(view_.aov)) << " - ";
         if (!status_.error.empty()) {
             title << "error: " << status_.error;
         } else {

@@ -14,7 +14,9 @@
 // settings and that sample count, bit for bit: a band is an rt::render of a
 // crop, and a crop holds exactly the full render's pixels (renderer.hpp).
 // Nothing here computes a color: the radiance function comes from
-// rt::make_radiance (render_setup.hpp), as in stage08_output.
+// rt::make_radiance (render_setup.hpp), as in stage08_output, or, in the
+// path-traced view, from stage 11's rt::path_radiance (path_radiance_of):
+// each level then averages more paths, so the image refines as it does for samples.
 //
 // Restarting: start() bumps a generation counter. The radiance function is
 // wrapped so that every sample first compares the counter with its render's;
@@ -42,7 +44,9 @@
 #include <rt/camera.hpp>
 #include <rt/error.hpp>
 #include <rt/filter.hpp>
+#include <rt/emitters.hpp>
 #include <rt/image.hpp>
+#include <rt/path_tracer.hpp>
 #include <rt/render_setup.hpp>
 #include <rt/renderer.hpp>
 #include <rt/sampler.hpp>
@@ -58,6 +62,7 @@ struct view {
     std::optional<rt::sampler_kind> sampler;  ///< none: rt::default_sampler of each level's spp
     int samples_per_pixel = 1;                ///< the last level's
     int max_depth = 5;
+    bool path_traced = false;  ///< stage 11's path tracer (MIS, roulette) instead of the shaded color
     rt::filter reconstruction{};
     std::uint64_t seed = 0;
     int threads = 0;
@@ -145,6 +150,19 @@ inline radiance_factory library_radiance()
         if (aov != rt::aov_kind::rays && !*accel)
             *accel = std::make_shared<const rt::accelerator>(s);
         return rt::make_radiance(s, *accel, aov);
+    };
+}
+
+/// Stage 11's path tracer as a radiance function for `s` (which must outlive
+/// it): MIS, Russian roulette, the scene's glowing triangles and background;
+/// each sample's path draws from the sample's own generator.
+inline rt::radiance_function path_radiance_of(const rt::scene& s)
+{
+    auto accel = std::make_shared<const rt::accelerator>(s);
+    auto lights = std::make_shared<const rt::emitter_list>(rt::find_emitters(s));
+    const rt::scene* scene = &s;
+    return [accel, lights, scene](const rt::ray& r, rt::sample_context& ctx) {
+        return rt::path_radiance(*scene, *accel, *lights, r, ctx.rng, rt::path_options{}, nullptr, &ctx.rays);
     };
 }
 
@@ -244,10 +262,11 @@ private:
         auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
         std::uint64_t rays_before = 0; // rays of the finished renders of this view
         try {
-            if (!radiance_ || radiance_aov_ != v.aov) {
+            if (!radiance_ || radiance_aov_ != v.aov || radiance_path_ != v.path_traced) {
                 radiance_ = nullptr;
-                radiance_ = factory_(scene_, v.aov);
+                radiance_ = v.path_traced ? path_radiance_of(scene_) : factory_(scene_, v.aov);
                 radiance_aov_ = v.aov;
+                radiance_path_ = v.path_traced;
             }
             scene_.max_depth = v.max_depth; // no render is running: the worker is here
             scene_.cam = v.cam;              // the thin lens (stage 10) focuses along the view's camera
@@ -370,6 +389,7 @@ private:
     radiance_factory factory_;
     rt::radiance_function radiance_;
     rt::aov_kind radiance_aov_ = rt::aov_kind::shaded;
+    bool radiance_path_ = false;
 
     // shared, under mutex_ (generation_ is also read without it)
     mutable std::mutex mutex_;

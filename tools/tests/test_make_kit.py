@@ -704,7 +704,7 @@ class TheRepositorysKit(unittest.TestCase):
             with contextlib.redirect_stdout(io.StringIO()):
                 self.assertEqual(make_kit.main(["--from-stage", "3", str(kit)]), 0)
             script = (kit / ".ci" / "run").read_text()
-            self.assertIn("stages=(03 04 05 06 07 08 09 10)", script)
+            self.assertIn("stages=(03 04 05 06 07 08 09 10 11)", script)
             self.assertIn('--target "check_stage$stage"', script)
             self.assertIn("-L '^library$'", script)
             for path in set(re.findall(r"\b(?:tools|tests|scripts)/[\w./-]+", script)):

@@ -256,6 +256,36 @@ TEST_CASE("every full level of the progressive render is rt::render's image for 
     CHECK(same_pixels(saved->pixels, full.pixels));
 }
 
+TEST_CASE("the path-traced view refines level by level into rt::render's image of stage 11's path tracer, bit for bit")
+{
+    // a glowing ball (seen from both sides) in a grey sky, stage 11's path tracer
+    rt::scene s;
+    rt::material glow;
+    glow.kd = rt::color(0.5f);
+    glow.emission = rt::color(1.0f);
+    s.materials.push_back(glow);
+    s.shapes.push_back(rt::sphere{rt::vec3(0), 1, 0});
+    s.background = rt::color(0.2f);
+    viewer::view v = small_view();
+    v.aov = rt::aov_kind::none;
+    v.path_traced = true;
+    viewer::progressive_renderer renderer(s);
+    const std::uint64_t generation = renderer.start(v);
+    rt::image shown;
+    const viewer::status done = wait_until_finished(renderer, generation, shown);
+    CHECK(done.error.empty());
+    CHECK(done.finished);
+    CHECK(done.levels_done == done.levels_total);
+    const std::vector<viewer::level> levels = viewer::plan_levels(v);
+    const rt::ray_source rays = rt::camera_rays(v.cam, v.width, v.height);
+    const rt::render_result full = rt::render(viewer::level_options(v, levels.back()), rays, viewer::path_radiance_of(s));
+    CHECK(same_pixels(shown, full.pixels));
+    // the ball's middle: its glow 1 plus what it reflects of the sky and of itself
+    const rt::color middle = shown.at(v.width / 2, v.height / 2);
+    INFO("expected the glowing ball's middle brighter than its glow alone, found " << middle.r);
+    CHECK(middle.r > 1.0f);
+}
+
 TEST_CASE("the preview shows one ray per 8 x 8 block, through the block's centre")
 {
     viewer::view v = small_view();
