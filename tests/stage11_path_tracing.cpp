@@ -274,6 +274,12 @@ TEST_CASE("emission_weight and light_sample_weight: the light of an emitter is c
 {
     using rt::path_strategy;
     const rt::real pdf_bsdf = rt::real(0.4), pdf_light = rt::real(1.3);
+    {
+        // next-event estimation alone: its shadow ray's light counts fully
+        const double nee_aimed = double(rt::light_sample_weight(path_strategy::nee, pdf_light, pdf_bsdf));
+        INFO("expected light_sample_weight(nee, ...) = 1 (with nee the shadow ray alone counts a light it can aim at), found " << nee_aimed);
+        CHECK(nee_aimed == 1);
+    }
     for (const path_strategy kind : {path_strategy::uniform, path_strategy::cosine, path_strategy::nee, path_strategy::mis}) {
         const double hit = double(rt::emission_weight(kind, 2, true, pdf_bsdf, pdf_light));
         const double aimed = rt::samples_lights(kind) ? double(rt::light_sample_weight(kind, pdf_light, pdf_bsdf)) : 0;
@@ -295,7 +301,6 @@ TEST_CASE("emission_weight and light_sample_weight: the light of an emitter is c
     INFO("expected MIS to weigh the path's hit by the power heuristic of (pdf_bsdf, pdf_light) = "
          << 0.16 / (0.16 + 1.69) << ", found " << mis_hit);
     CHECK(mis_hit == doctest::Approx(0.16 / (0.16 + 1.69)).epsilon(1e-4));
-    CHECK(double(rt::light_sample_weight(path_strategy::nee, pdf_light, pdf_bsdf)) == 1);
 }
 
 TEST_CASE("russian_roulette: the path goes on with probability min(1, max throughput), and the mean is unchanged")
