@@ -31,11 +31,11 @@ namespace rt {
 
 enum class path_strategy { uniform, cosine, nee, mis };
 
-inline constexpr enum_name<path_strategy> path_strategy_names[] = {
+inline constexpr detail::enum_name<path_strategy> path_strategy_names[] = {
     {path_strategy::uniform, "uniform"}, {path_strategy::cosine, "cosine"}, {path_strategy::nee, "nee"},
     {path_strategy::mis, "mis"}};
 
-inline const char* name_of(path_strategy kind) { return name_in(path_strategy_names, kind); }
+inline const char* name_of(path_strategy kind) { return detail::name_in(path_strategy_names, kind); }
 
 /// True for the strategies that trace a shadow ray to the emitters at each bounce.
 inline bool samples_lights(path_strategy kind)

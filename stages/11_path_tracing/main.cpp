@@ -92,7 +92,7 @@ void print_story_json(std::ostream& out, const rt::path_story& st, const rt::sce
     for (std::size_t i = 0; i < st.vertices.size(); ++i) {
         const rt::path_vertex& v = st.vertices[i];
         out << (i ? ", " : "") << "{\"point\": " << v3(v.point) << ", \"material\": \""
-            << rt::printable(s.material_of(v.material).name) << "\", \"throughput\": " << c3(v.throughput)
+            << rt::detail::printable(s.material_of(v.material).name) << "\", \"throughput\": " << c3(v.throughput)
             << ", \"emitted\": " << c3(v.emitted) << ", \"emitted_weight\": " << v.emitted_weight
             << ", \"light_visible\": " << (v.light_visible ? "true" : "false") << ", \"light_estimate\": "
             << c3(v.light_estimate) << ", \"light_weight\": " << v.light_weight << ", \"added\": " << c3(v.added)
@@ -142,8 +142,8 @@ int main(int argc, char** argv)
                 else if (arg == "--strategy")
                     options.path.strategy = stage::parse_name<rt::path_strategy>(
                         arg, args.value_of(arg),
-                        [](const std::string& w) { return rt::value_named(rt::path_strategy_names, w); },
-                        rt::names_listed(rt::path_strategy_names));
+                        [](const std::string& w) { return rt::detail::value_named(rt::path_strategy_names, w); },
+                        rt::detail::names_listed(rt::path_strategy_names));
                 else if (arg == "--adaptive")
                     options.adaptive = true;
                 else if (arg == "--tolerance")

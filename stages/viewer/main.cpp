@@ -357,7 +357,7 @@ private:
         case SDLK_4: set_aov(rt::aov_kind::position); break;
         case SDLK_5: set_aov(rt::aov_kind::rays); break;
         case SDLK_6:
-            view_.aov = rt::aov_kind::none;
+            view_.aov = rt::aov_kind::shaded;
             view_.path_traced = true;
             say("view: path traced (stage 11: MIS, Russian roulette; the glowing triangles and the background light it)");
             restart();

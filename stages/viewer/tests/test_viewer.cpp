@@ -267,7 +267,7 @@ TEST_CASE("the path-traced view refines level by level into rt::render's image o
     s.shapes.push_back(rt::sphere{rt::vec3(0), 1, 0});
     s.background = rt::color(0.2f);
     viewer::view v = small_view();
-    v.aov = rt::aov_kind::none;
+    v.aov = rt::aov_kind::shaded;
     v.path_traced = true;
     viewer::progressive_renderer renderer(s);
     const std::uint64_t generation = renderer.start(v);
