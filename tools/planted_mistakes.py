@@ -67,6 +67,12 @@ REFRACTION = "include/rt/refraction.hpp"
 AREA_LIGHT = "include/rt/area_light.hpp"
 THIN_LENS = "include/rt/thin_lens.hpp"
 GLOSSY = "include/rt/glossy.hpp"
+HEMISPHERE = "include/rt/hemisphere.hpp"
+LAMBERTIAN = "include/rt/lambertian.hpp"
+NEXT_EVENT = "include/rt/next_event.hpp"
+MIS = "include/rt/mis.hpp"
+ROULETTE = "include/rt/roulette.hpp"
+ADAPTIVE = "include/rt/adaptive.hpp"
 
 _JITTER_DRAWS = ("            const real xi1 = real(rng.next_float()); // one draw per statement: a fixed order\n"
                  "            const real xi2 = real(rng.next_float());\n")
@@ -85,8 +91,8 @@ MISTAKES: List[Mistake] = [
        [(CAMERA_STATEMENT, "if (!(fov > 0 && fov < 180))", "if (!(fov >= 0 && fov <= 180))")],
        "bad scenes", ["a field of view between 0 and 180 degrees) for field of view 0, but the scene loaded"]),
     _m(1, "the position taken after reading the value",
-       [(CAMERA_STATEMENT, 'throw parse_error(where, "a field of view between 0 and 180 degrees"',
-         'throw parse_error(line.here(), "a field of view between 0 and 180 degrees"')],
+       [(CAMERA_STATEMENT, 'throw make_error(where, "a field of view between 0 and 180 degrees"',
+         'throw make_error(line.here(), "a field of view between 0 and 180 degrees"')],
        "bad scenes", ["column"]),
     # --- stage 02 ---
     _m(2, "rows counted from the top",
@@ -285,6 +291,30 @@ MISTAKES: List[Mistake] = [
        [(GLOSSY, "(xi1 - real(0.5)) * a * u + (xi2 - real(0.5)) * a * v",
          "(2 * xi1 - 1) * a * u + (2 * xi2 - 1) * a * v")],
        "glossy_direction", ["the square of side a"]),
+    # --- stage 11 ---
+    _m(11, "Uniform directions for cosine ones",
+       [(HEMISPHERE, "    return vec3(d.x, d.y, z);", "    (void)z;\n    return uniform_hemisphere(xi1, xi2);")],
+       "cosine_hemisphere: unit directions above the surface", ["the uniform hemisphere"]),
+    _m(11, "The BRDF without cos / pdf",
+       [(LAMBERTIAN, "s.weight = lambertian_brdf(albedo) * float(local.z / s.pdf);",
+         "s.weight = lambertian_brdf(albedo);")],
+       "sample_lambertian", ["albedo / pi is the BRDF alone"]),
+    _m(11, "No cosine in `pdf_w`",
+       [(NEXT_EVENT, "return pdf_area * distance * distance / c;", "return pdf_area * distance * distance;")],
+       "solid_angle_pdf", ["without the cosine the light looks bigger"]),
+    _m(11, "The balance heuristic",
+       [(MIS, "const real a = pdf_a * pdf_a, b = pdf_b * pdf_b;", "const real a = pdf_a, b = pdf_b;")],
+       "power_heuristic", ["balance heuristic"]),
+    _m(11, "Emission counted twice with NEE",
+       [(MIS, "        return 0; // next-event estimation counted it already",
+         "        return 1; // next-event estimation counted it already")],
+       "emission_weight and light_sample_weight", ["the light is counted twice"]),
+    _m(11, "A survivor not divided by q",
+       [(ROULETTE, "    throughput /= float(q);\n", "")],
+       "russian_roulette", ["divided by the probability q"]),
+    _m(11, "n for n - 1 in sigma",
+       [(ADAPTIVE, "/ (n - 1));", "/ n);")],
+       "pixel_converged", ["n instead of n - 1"]),
 ]
 
 
