@@ -678,7 +678,7 @@ def switchable_body(region: Region, doc: Optional[str], body: List[str]) -> List
     not-done message when RT_KIT_STRIP names its stage (or a stage it repeats)."""
     ind = region.indent
     stages = ", ".join(str(s) for s in [region.stage] + list(region.repeats))
-    lines = [f"{ind}if (rt::kit_check_strips({{{stages}}})) {{"]
+    lines = [f"{ind}if (rt::detail::kit_check_strips({{{stages}}})) {{"]
     for name, pack in region.parameters:
         lines.append(f"{ind}    ((void){name}, ...);" if pack else f"{ind}    (void){name};")
     lines.append(f"{ind}    throw rt::exercise_not_done({cxx_string(not_done_message(region, doc))});")
@@ -704,6 +704,7 @@ KIT_CHECK_SWITCH = """
 #include <unistd.h>
 
 namespace rt {
+namespace detail { // not API: the public-names check would name them
 
 /// The whole of a small /proc file ("" when it cannot be read).
 inline std::string kit_check_proc_file(long pid, const char* name)
@@ -798,6 +799,7 @@ inline bool kit_check_strips(std::initializer_list<int> stages)
     return false;
 }
 
+} // namespace detail
 } // namespace rt
 """
 
