@@ -67,13 +67,7 @@ public:
 
     float closest(const rt::ray& r, float tmin, float tmax) const
     {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit query;
-        set_ray(query.ray, r, tmax, tmin);
-        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &query);
+        const RTCRayHit query = intersect(r, tmin, tmax);
         return query.hit.geomID == RTC_INVALID_GEOMETRY_ID ? infinity : query.ray.tfar;
     }
 
@@ -89,13 +83,7 @@ public:
     bool closest_with_normal(const rt::ray& r, float tmax, float& t, unsigned& triangle, rt::vec3& normal, float& u,
                              float& v, float tmin = 0) const
     {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit query;
-        set_ray(query.ray, r, tmax, tmin);
-        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene_, &context, &query);
+        const RTCRayHit query = intersect(r, tmin, tmax);
         if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             return false;
         t = query.ray.tfar;
@@ -117,6 +105,19 @@ public:
     }
 
 private:
+    /// rtcIntersect1 of one ray: the hit's geomID is RTC_INVALID_GEOMETRY_ID on a miss.
+    RTCRayHit intersect(const rt::ray& r, float tmin, float tmax) const
+    {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit query;
+        set_ray(query.ray, r, tmax, tmin);
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &context, &query);
+        return query;
+    }
+
     static void set_ray(RTCRay& out, const rt::ray& r, float tmax, float tmin = 0)
     {
         out.org_x = float(r.origin.x);
