@@ -13,13 +13,17 @@ import sys
 def read(path):
     """(notes, rows): the '# key: value' lines as a dict, the rows as dicts."""
     notes, lines = {}, []
-    with open(path, newline="") as f:
-        for line in f:
-            if line.startswith("#"):
-                key, _, value = line[1:].strip().partition(": ")
-                notes[key] = value
-            else:
-                lines.append(line)
+    try:
+        with open(path, newline="") as f:
+            for line in f:
+                if line.startswith("#"):
+                    key, _, value = line[1:].strip().partition(": ")
+                    notes[key] = value
+                else:
+                    lines.append(line)
+    except OSError as e:  # one line, not a traceback: a run folder without its CSV
+        raise SystemExit(f"{path}: expected a benchmark's CSV file, found {e.strerror.lower()}; "
+                         f"give the --out folder of a finished run")
     return notes, list(csv.DictReader(lines))
 
 

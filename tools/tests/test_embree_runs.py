@@ -113,6 +113,14 @@ class Tables(unittest.TestCase):
             embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(self.tmp / "short"))
         self.assertIn("cube incoherent", str(caught.exception))
 
+    def test_a_folder_without_the_run_is_one_line_naming_the_file(self):
+        with self.assertRaises(SystemExit) as caught:
+            embree_runs.main([str(self.tmp / "one"), str(self.tmp / "unfinished")])
+        message = str(caught.exception)
+        self.assertIn("unfinished/embree_rays.csv: expected a benchmark's CSV file, found no such file", message)
+        self.assertIn("give the --out folder of a finished run", message)
+        self.assertNotIn("\n", message)
+
     def test_a_run_from_before_the_high_quality_column_is_refused_by_name(self):
         old = self.tmp / "old"
         write_run(old, 0.5, 3.8)

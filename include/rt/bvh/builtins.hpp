@@ -54,9 +54,12 @@ inline void prefetch(const void* p)
 #endif
 }
 
-/// Whether this CPU runs AVX2 code: the processor has AVX2 and the operating
-/// system saves the 256-bit registers (XGETBV's bits 1 and 2). GCC's and
-/// Clang's __builtin_cpu_supports("avx2") checks both; MSVC reads CPUID
+/// Whether this CPU runs the 8-wide path (bvh/dispatch.hpp): the processor has
+/// AVX2 and the operating system saves the 256-bit registers (XGETBV's bits 1
+/// and 2), and with g++ and clang++, which compile that path with them, the
+/// bit instructions BMI1, BMI2 and POPCNT (every AVX2 CPU has them:
+/// the check is for virtual machines that hide some). GCC's and Clang's
+/// __builtin_cpu_supports("avx2") checks AVX2 and the registers; MSVC reads CPUID
 /// itself: leaf 1, ECX bit 27 (OSXSAVE) and bit 28 (AVX), XCR0 bits 1 and 2,
 /// then leaf 7, EBX bit 5 (AVX2) (Intel SDM vol. 1, 14.3 "Detection of Intel
 /// AVX instructions" and 14.7.1 for AVX2). False elsewhere (no x86).
@@ -75,7 +78,8 @@ inline bool cpu_runs_avx2()
     return (info[1] & (1 << 5)) != 0;
 #elif (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
     __builtin_cpu_init(); // idempotent; needed only before constructors ran
-    return __builtin_cpu_supports("avx2") != 0;
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
+           __builtin_cpu_supports("popcnt");
 #else
     return false;
 #endif

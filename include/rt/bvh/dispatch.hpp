@@ -13,12 +13,16 @@
 //  - in a section whose macros say AVX2 (RT_BVH_AVX2_SECTION: abi_begin.hpp
 //    then gives RT_BVH_AVX2 = 1 and RT_BVH_ABI = bvh_w8), so each header's
 //    guard lets its 8-wide version through (one guard per width);
-//  - under target("avx2"): `#pragma GCC target` (g++) or `#pragma clang
-//    attribute` (clang++), which give every function the section defines,
-//    lambdas and templates included, the right to use AVX2, and through it
-//    AVX and SSE4 (clang++ does not define __AVX2__ there, g++ does: nothing
-//    here reads it). MSVC compiles AVX2 intrinsics in any function and needs
-//    none (not checked in CI);
+//  - under target("avx2,bmi,bmi2,popcnt"): `#pragma GCC target` (g++)
+//    or `#pragma clang attribute` (clang++), which give every function the
+//    section defines, lambdas and templates included, the right to use AVX2,
+//    through it AVX and SSE4, and the bit instructions every AVX2 CPU has
+//    (x86-64-v3 less FMA, LZCNT and MOVBE: the walk's variable shifts and bit counts
+//    are single instructions, shlx and popcnt, as under -march=native; what
+//    they buy is in docs/performance.md, "The path picked at run time").
+//    clang++ does not define __AVX2__ there, g++ does: nothing here reads it.
+//    MSVC compiles AVX2 intrinsics in any function and needs none (not
+//    checked in CI);
 //  - in the namespaces rt::bvh_w8 and rt::detail::bvh_w8, not inline, so that
 //    rt::bvh, rt::detail::bvh_node... stay the unit's 4-wide ones (layout.hpp links
 //    the section's names to its own width).
@@ -28,7 +32,7 @@
 //    8-wide walk computes the bits of the 4-wide one and of the scalar one
 //    (tests/library_dispatch.cpp compares them) without -ffp-contract=off.
 //  - Only rt::accelerator calls into the section, and only after
-//    detail::cpu_runs_avx2() (builtins.hpp) said yes: an 8-wide tree is
+//    detail::cpu_runs_avx2() (builtins.hpp: AVX2 and those bit instructions) said yes: an 8-wide tree is
 //    built, walked and destroyed only on an AVX2 CPU (it is held apart, in a
 //    std::optional, never default-constructed on the SSE path).
 //  - What the section calls outside it (the watertight test's check in
@@ -37,7 +41,8 @@
 //    section, never the reverse (a target mismatch it refuses).
 //  - One unit compiled with -mavx2 and one dispatching both define
 //    rt::bvh_w8's functions, from the same text with the same macros; the
-//    linker may keep either, and either runs where the 8-wide path runs.
+//    linker may keep either, and either runs where the 8-wide path runs
+//    (the dispatching copy's bit instructions too: every AVX2 CPU has them).
 //    rt::accelerator itself differs (it holds either width), so a
 //    dispatching unit names it rt::bvh_dispatch::accelerator
 //    (RT_BVH_ACCELERATOR_ABI, abi_begin.hpp; tests/library_mixed_targets.cpp).
@@ -54,10 +59,10 @@
 
 #define RT_BVH_AVX2_SECTION
 #if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#pragma clang attribute push(__attribute__((target("avx2,bmi,bmi2,popcnt"))), apply_to = function)
 #elif defined(__GNUC__)
 #pragma GCC push_options
-#pragma GCC target("avx2")
+#pragma GCC target("avx2,bmi,bmi2,popcnt")
 #endif
 
 #include "bvh.hpp" // now the 8-wide path, in rt::bvh_w8

@@ -104,21 +104,35 @@ public:
         const __m128 last = _mm_set1_ps(float(used_ - 1));
         const __m128 xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
         const __m128 zero = _mm_setzero_ps();
-        const auto bin_one = [&](const build_item& item, bin_box* const* boxes, std::uint32_t* const* counts) {
-            alignas(16) std::int32_t slot[4];
+        // One set of bins as locals: __m128 may alias anything, so pointers
+        // read from the members would be read again after every store to a
+        // bin, and a loop over the axes was not unrolled (what this bought:
+        // docs/architecture.md, "Figures behind the comments").
+        struct bin_set {
+            bin_box *x, *y, *z;
+            std::uint32_t *nx, *ny, *nz;
+        };
+        const auto bin_one = [&](const build_item& item, const bin_set& set) {
             const __m128 lo = _mm_loadu_ps(&item.box.lo.x);
             const __m128 hi = _mm_loadu_ps(&item.box.hi.x);
             const __m128 c = _mm_and_ps(_mm_loadu_ps(&item.centroid.x), xyz);
             const __m128 at = _mm_mul_ps(_mm_sub_ps(c, low), scale);
             // max(at, 0) returns 0 for a NaN (its second operand), as bin_of does
-            _mm_store_si128(reinterpret_cast<__m128i*>(slot), _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(at, zero), last)));
-            for (int axis = 0; axis < 3; ++axis) {
-                bin_box& b = boxes[axis][std::size_t(slot[axis])];
-                b.lo = _mm_min_ps(b.lo, lo);
-                b.hi = _mm_max_ps(b.hi, hi);
-                ++counts[axis][std::size_t(slot[axis])];
-            }
+            const __m128i slot = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(at, zero), last));
+            const std::size_t sx = std::uint32_t(_mm_cvtsi128_si32(slot));
+            const std::size_t sy = std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(slot, _MM_SHUFFLE(1, 1, 1, 1))));
+            const std::size_t sz = std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(slot, _MM_SHUFFLE(2, 2, 2, 2))));
+            set.x[sx].lo = _mm_min_ps(set.x[sx].lo, lo);
+            set.x[sx].hi = _mm_max_ps(set.x[sx].hi, hi);
+            set.y[sy].lo = _mm_min_ps(set.y[sy].lo, lo);
+            set.y[sy].hi = _mm_max_ps(set.y[sy].hi, hi);
+            set.z[sz].lo = _mm_min_ps(set.z[sz].lo, lo);
+            set.z[sz].hi = _mm_max_ps(set.z[sz].hi, hi);
+            ++set.nx[sx];
+            ++set.ny[sy];
+            ++set.nz[sz];
         };
+        const bin_set even{box_[0], box_[1], box_[2], count_in_[0], count_in_[1], count_in_[2]};
         std::size_t i = 0;
         if (n >= 4 * used_) {
             // Neighbouring items of a mesh fall in the same bins: each would wait
@@ -128,9 +142,10 @@ public:
                 std::fill(odd_box_[axis], odd_box_[axis] + used_, bin_box{});
                 std::fill(odd_count_[axis], odd_count_[axis] + used_, std::uint32_t(0));
             }
+            const bin_set odd{odd_box_[0], odd_box_[1], odd_box_[2], odd_count_[0], odd_count_[1], odd_count_[2]};
             for (; i + 1 < n; i += 2) {
-                bin_one(items[i], box_, count_in_);
-                bin_one(items[i + 1], odd_box_, odd_count_);
+                bin_one(items[i], even);
+                bin_one(items[i + 1], odd);
             }
             for (int axis = 0; axis < 3; ++axis)
                 for (std::size_t b = 0; b < used_; ++b) {
@@ -139,7 +154,7 @@ public:
                 }
         }
         for (; i < n; ++i)
-            bin_one(items[i], box_, count_in_);
+            bin_one(items[i], even);
 #else
         for (std::size_t i = 0; i < n; ++i) {
             const build_item& item = items[i];
