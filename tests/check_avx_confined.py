@@ -2,20 +2,28 @@
 """The 8-wide path's AVX2 code stays in its namespaces (include/rt/bvh/dispatch.hpp).
 
 A program compiled without AVX2 in its target holds the BVH twice: the
-unit's own 4-wide path and the 8-wide one compiled under target("avx2"),
-which rt::accelerator enters only after the CPU test. Every instruction on
-256-bit registers must therefore sit in a function of rt::bvh_w8 or
+unit's own 4-wide path and the 8-wide one compiled under
+target("avx2,bmi,bmi2,popcnt"), which rt::accelerator enters only after the
+CPU test. Every instruction on 256-bit registers, and every BMI1, BMI2 or
+POPCNT instruction, must therefore sit in a function of rt::bvh_w8 or
 rt::detail::bvh_w8 (or a lambda or template of theirs): one elsewhere (a
 shared template instantiated inside the AVX2 section, say) could run on a
-CPU without AVX2. Reads the disassembly of PROGRAM (objdump -d -C) and
-prints each function outside them that uses a ymm register; exits 1 if
-there is one, or if no function of bvh_w8 uses one (nothing was checked).
+CPU without them. Reads the disassembly of PROGRAM (objdump -d -C) and
+prints each function outside them that uses a ymm register or such an
+instruction; exits 1 if there is one, or if no function of bvh_w8 uses a
+ymm register (nothing was checked).
 Usage: check_avx_confined.py OBJDUMP PROGRAM
 """
 import os
 import re
 import subprocess
 import sys
+
+
+# BMI1, BMI2 and POPCNT mnemonics as objdump prints them (AT&T syntax, a tab
+# before). Not tzcnt: compilers emit `rep bsf` for a bit scan on any x86-64,
+# which a CPU without BMI1 runs as bsf and objdump prints as tzcnt.
+BIT_INSTRUCTION = re.compile(r"\t(andn|bextr|blsi|blsmsk|blsr|bzhi|mulx|pdep|pext|rorx|sarx|shlx|shrx|popcnt)[lqw]?\s")
 
 
 def main() -> int:
@@ -31,10 +39,14 @@ def main() -> int:
         if m:
             function = m.group(1)
             continue
-        if function is not None and "%ymm" in line:
+        if function is None:
+            continue
+        if "%ymm" in line:
             (inside if "bvh_w8::" in function else outside).add(function)
+        elif "bvh_w8::" not in function and BIT_INSTRUCTION.search(line):
+            outside.add(function)
     for f in sorted(outside):
-        print(f"{program}: expected ymm registers only in rt::bvh_w8, found them in {f}")
+        print(f"{program}: expected ymm registers and BMI/POPCNT instructions only in rt::bvh_w8, found them in {f}")
     print(f"{len(inside)} functions of rt::bvh_w8 use ymm registers, {len(outside)} others")
     if not inside:
         print(f"{program}: expected the 8-wide path's functions to use ymm registers, found none")

@@ -19,7 +19,7 @@
 // compiler can compile single functions for it (g++ and clang++ on x86-64,
 // MSVC there too), RT_BVH_DISPATCH is 1: the unit compiles the 4-wide SSE path
 // as its target allows, then the 8-wide AVX2 path a second time under
-// target("avx2") in the namespace rt::bvh_w8 (not inline: rt::bvh stays the
+// target("avx2,bmi,bmi2,popcnt") in the namespace rt::bvh_w8 (not inline: rt::bvh stays the
 // 4-wide tree), and rt::accelerator, in the namespace bvh_dispatch
 // (RT_BVH_ACCELERATOR_ABI), walks the one the CPU runs. A unit whose target has
 // AVX2 (-mavx2, -march=native on an AVX2 machine) skips the dispatch, and so
@@ -34,7 +34,7 @@
 
 #if defined(RT_BVH_AVX2_SECTION)
 // bvh/dispatch.hpp's second section: the 8-wide path, compiled under
-// target("avx2") in a unit whose target lacks AVX2
+// target("avx2,bmi,bmi2,popcnt") in a unit whose target lacks AVX2
 #define RT_BVH_SSE 1
 #define RT_BVH_AVX 1
 #define RT_BVH_AVX2 1
