@@ -231,6 +231,7 @@ int main(int argc, char** argv)
             bench::parse_options(argc, argv, "bench_embree: experiment 6, rt's BVH against Embree 3 on the shared meshes");
         const unsigned all = bench::hardware_threads();
         const int repeats = o.quick ? 1 : 5; // best of 5, alternately: the machine is shared
+        const int build_repeats = o.quick ? 1 : 9; // the builds: best of 9
         const int width = o.quick ? 64 : 1024, height = o.quick ? 48 : 768;
         const std::size_t incoherent_count = o.quick ? 4096 : std::size_t(1) << 20;
         // quick mode: the two small meshes only (loading the 1.1M-triangle bunny alone takes seconds)
@@ -280,48 +281,50 @@ int main(int argc, char** argv)
                       << bench::seconds_since(load_start) << " s\n";
             const std::size_t triangles = m.geometry.triangles.size();
 
-            // builds: Embree on one thread, Embree on all, rt
-            double embree_build_1 = 1e300;
-            for (int k = 0; k < repeats; ++k)
-                embree_build_1 = std::min(embree_build_1, embree_scene(m.geometry, "threads=1").build_seconds());
-            embree_scene embree(m.geometry, "threads=1"); // traversal needs no TBB workers
-            double embree_build_all = embree.build_seconds();
-            for (int k = 1; k < repeats; ++k)
-                embree_build_all = std::min(embree_build_all, embree_scene(m.geometry, nullptr).build_seconds());
-            // Embree's build with spatial splits, like rt's default (its own default has none)
-            double embree_build_high = 1e300;
-            for (int k = 0; k < repeats; ++k)
-                embree_build_high = std::min(
-                    embree_build_high,
-                    embree_scene(m.geometry, "threads=1", RTC_BUILD_QUALITY_HIGH).build_seconds());
+            // builds: the six kinds in turn in every round, best of build_repeats
+            // each, so that a slower spell of the shared machine falls on all
+            // of them (the builds' differences are a few percent)
+            double embree_build_1 = 1e300, embree_build_all = 1e300, embree_build_high = 1e300;
+            const auto time_embree = [&](const char* config, RTCBuildQuality quality, double& best) {
+                best = std::min(best, embree_scene(m.geometry, config, quality).build_seconds());
+            };
+            double rt_build = std::nan(""), rt_build_all = std::nan(""), rt_build_plain = std::nan("");
 #if defined(RT_BENCH_HAS_ACCELERATOR)
             rt::scene rt_scene;
             rt_scene.shapes.push_back(m.geometry);
-            // rt on one thread and on all, alternately (the accelerator as a
-            // program makes it: the mesh packed, the tree built, the blocks laid out)
-            double rt_build = 1e300, rt_build_all = 1e300, rt_build_plain = 1e300;
+            // rt on one thread and on all, and without spatial splits (the
+            // accelerator as a program makes it: the mesh packed, the tree
+            // built, the blocks laid out)
+            rt_build = rt_build_all = rt_build_plain = 1e300;
             rt::bvh_options one_thread, plain;
             one_thread.threads = 1;
             plain.threads = 1;
             plain.spatial_budget = 0; // what the spatial splits cost
             // Each tree is freed before the next build, as Embree's scenes
-            // are above: three trees alive at once made the later builds
-            // fault in fresh pages (the bunny's two-thread build took 11.1-11.6
-            // ms instead of 9.8-10.3).
-            const auto time_build = [&](const rt::bvh_options& options, double& best) {
+            // are: three trees alive at once made the later builds fault in
+            // fresh pages (the bunny's two-thread build took 11.1-11.6 ms
+            // instead of 9.8-10.3).
+            const auto time_rt = [&](const rt::bvh_options& options, double& best) {
                 const auto start = bench::clock::now();
                 rt::accelerator probe(rt_scene, rt::accelerator_kind::bvh, options);
                 best = std::min(best, bench::seconds_since(start));
                 bench::keep(probe);
             };
-            for (int k = 0; k < repeats; ++k) {
-                time_build(one_thread, rt_build);
-                time_build(rt::bvh_options{}, rt_build_all);
-                time_build(plain, rt_build_plain);
+#endif
+            for (int k = 0; k < build_repeats; ++k) {
+                time_embree("threads=1", RTC_BUILD_QUALITY_MEDIUM, embree_build_1);
+                time_embree(nullptr, RTC_BUILD_QUALITY_MEDIUM, embree_build_all);
+                // Embree's build with spatial splits, like rt's default (its own default has none)
+                time_embree("threads=1", RTC_BUILD_QUALITY_HIGH, embree_build_high);
+#if defined(RT_BENCH_HAS_ACCELERATOR)
+                time_rt(one_thread, rt_build);
+                time_rt(rt::bvh_options{}, rt_build_all);
+                time_rt(plain, rt_build_plain);
+#endif
             }
+            embree_scene embree(m.geometry, "threads=1"); // traversal needs no TBB workers
+#if defined(RT_BENCH_HAS_ACCELERATOR)
             const rt::accelerator accel(rt_scene, rt::accelerator_kind::bvh);
-#else
-            const double rt_build = std::nan(""), rt_build_all = std::nan(""), rt_build_plain = std::nan("");
 #endif
             builds.row() << file << triangles << m.geometry.dropped_degenerate << rt_build << rt_build_all
                          << embree_build_1 << embree_build_all << rt_build / embree_build_1 << rt_build / rt_build_all
