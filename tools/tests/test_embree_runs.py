@@ -119,6 +119,17 @@ class Tables(unittest.TestCase):
             embree_runs.tables(embree_runs.load(self.tmp / "one"), embree_runs.load(self.tmp / "short"))
         self.assertIn("cube incoherent", str(caught.exception))
 
+    def test_runs_without_a_mesh_give_empty_tables(self):
+        # CI's quick run without ../shared: both CSV files hold their header only
+        for name in ("empty1", "empty2"):
+            folder = self.tmp / name
+            folder.mkdir()
+            (folder / "embree_rays.csv").write_text("# machine: a test machine\n" + RAYS)
+            (folder / "embree_build.csv").write_text("# machine: a test machine\n" + BUILD)
+        text = embree_runs.tables(embree_runs.load(self.tmp / "empty1"), embree_runs.load(self.tmp / "empty2"))
+        self.assertIn("in both runs: 0 of 0. rt's speed-up from one to two threads: none measured", text)
+        self.assertIn("on 0 of 0 meshes", text)
+
     def test_a_folder_without_the_run_is_one_line_naming_the_file(self):
         with self.assertRaises(SystemExit) as caught:
             embree_runs.main([str(self.tmp / "one"), str(self.tmp / "unfinished")])
