@@ -66,11 +66,13 @@ class Tables(unittest.TestCase):
         write_run(self.tmp / "ahead", 1.0, 3.7)   # 1.85x on two threads
         write_run(self.tmp / "near", 0.999, 4.0)  # shown as 1.00, not counted
         text = embree_runs.tables(embree_runs.load(self.tmp / "ahead"), embree_runs.load(self.tmp / "ahead"))
-        self.assertIn("in both runs: 5 of 5. rt's speed-up from one to two threads: 1.85x-1.85x over the sets of both runs, "
+        self.assertIn("in both runs: 5 of 5. rt's speed-up from one to two threads: "
+                      "1.85x-1.85x over the sets of both runs, "
                       "1.9x or more on 0 (0) of 5.", text)
         text = embree_runs.tables(embree_runs.load(self.tmp / "ahead"), embree_runs.load(self.tmp / "near"))
         self.assertIn("| cube | 1.00 (1.00) |", text)
-        self.assertIn("in both runs: 0 of 5. rt's speed-up from one to two threads: 1.85x-2.00x over the sets of both runs, "
+        self.assertIn("in both runs: 0 of 5. rt's speed-up from one to two threads: "
+                      "1.85x-2.00x over the sets of both runs, "
                       "1.9x or more on 0 (5) of 5.", text)
 
     def test_the_marked_block_is_replaced_and_the_rest_kept(self):
