@@ -1,7 +1,8 @@
 // library_dispatch.cpp - run-time dispatch (include/rt/bvh/dispatch.hpp): a
 // program compiled without AVX2 in its target (-O2 alone, on x86-64) holds
-// the 4-wide SSE path and the 8-wide AVX2 path, and rt::accelerator walks the
-// one the CPU runs. The suite builds one accelerator per path this program
+// the 4-wide SSE path and the 8-wide AVX2 path (with g++ and clang++ also
+// that path compiled for AVX-512), and rt::accelerator walks the widest the
+// CPU runs. The suite builds one accelerator per path this program
 // holds and this CPU runs (the constructor's bvh_path forces it) and checks
 // that they return the same hits, bit for bit, as each other, as the scalar
 // walk of their own tree (node and leaf tests one value at a time) and as the
@@ -44,6 +45,8 @@ std::vector<rt::bvh_path> paths_here()
     std::vector<rt::bvh_path> paths = {rt::bvh_path::sse};
     if (rt::detail::cpu_runs_avx2())
         paths.push_back(rt::bvh_path::avx2);
+    if (rt::accelerator::dispatches_avx512 && rt::detail::cpu_runs_avx512())
+        paths.push_back(rt::bvh_path::avx512);
     return paths;
 }
 
@@ -172,17 +175,23 @@ TEST_CASE("an accelerator walks the path this program and this CPU allow, and sa
     const std::vector<rt::bvh_path> held = paths_here();
     const rt::bvh_path best = rt::accelerator::automatic_path();
     const std::string program = rt::accelerator::dispatches ? "dispatches" : "does not dispatch";
-    const std::string cpu = rt::detail::cpu_runs_avx2() ? "runs" : "does not run";
-    MESSAGE("this program " << program << "; this CPU " << cpu << " AVX2; paths: " << listed(held)
+    const std::string cpu = rt::detail::cpu_runs_avx512() ? "runs AVX-512 and AVX2"
+                            : rt::detail::cpu_runs_avx2()   ? "runs AVX2, not AVX-512"
+                                                            : "does not run AVX2";
+    MESSAGE("this program " << program << std::string(rt::accelerator::dispatches_avx512 ? " (AVX-512 too)" : "")
+                            << "; this CPU " << cpu << "; paths: " << listed(held)
                             << "; automatic: " << std::string(rt::describe(best)));
-    CHECK(best == held.back()); // the 8-wide path where it runs
+    CHECK(best == held.back()); // the widest path that runs
     // a run on an emulated CPU says which path it must take (tests/CMakeLists.txt:
     // sse under qemu-x86_64 -cpu Nehalem, whose CPUID has no AVX)
     if (const char* expected = std::getenv("RT_TEST_EXPECT_PATH"))
         CHECK(std::string(rt::name_of(best)) == expected);
     if (rt::accelerator::dispatches)
-        CHECK(best == (rt::detail::cpu_runs_avx2() ? rt::bvh_path::avx2 : rt::bvh_path::sse));
+        CHECK(best == (rt::accelerator::dispatches_avx512 && rt::detail::cpu_runs_avx512() ? rt::bvh_path::avx512
+                       : rt::detail::cpu_runs_avx2()                                        ? rt::bvh_path::avx2
+                                                                                            : rt::bvh_path::sse));
 
+    CHECK(std::string(rt::describe(rt::bvh_path::avx512)) == "avx512 (8-wide)");
     CHECK(std::string(rt::describe(rt::bvh_path::avx2)) == "avx2 (8-wide)");
     CHECK(std::string(rt::describe(rt::bvh_path::sse)) == "sse (4-wide)");
     CHECK(std::string(rt::describe(rt::bvh_path::scalar)) == "scalar (4-wide)");
@@ -196,11 +205,11 @@ TEST_CASE("an accelerator walks the path this program and this CPU allow, and sa
         const rt::accelerator forced(s, rt::accelerator_kind::bvh, {}, p);
         CAPTURE(rt::describe(p));
         CHECK(forced.path() == p);
-        CHECK(node_width(forced) == (p == rt::bvh_path::avx2 ? 8 : 4));
+        CHECK(node_width(forced) == (p == rt::bvh_path::avx2 || p == rt::bvh_path::avx512 ? 8 : 4));
         CHECK(forced.stats().nodes > 1);
     }
     // a path the program does not hold, or the CPU does not run, is refused by name
-    for (rt::bvh_path p : {rt::bvh_path::scalar, rt::bvh_path::sse, rt::bvh_path::avx2}) {
+    for (rt::bvh_path p : {rt::bvh_path::scalar, rt::bvh_path::sse, rt::bvh_path::avx2, rt::bvh_path::avx512}) {
         bool is_held = false;
         for (rt::bvh_path h : held)
             is_held = is_held || h == p;

@@ -28,9 +28,10 @@
 // The BVH is walked by one of the fast paths (bvh_path): 8-wide nodes in AVX2
 // where the CPU has it, else 4-wide nodes in SSE (x86-64), else 4-wide nodes
 // one value at a time (arm64, rt::real = double). A program compiled without
-// AVX2 in its target (-O2 alone) holds both x86-64 paths and picks one when
-// the accelerator is built, by asking the CPU (bvh/dispatch.hpp); simd_path()
-// says which. All of them return the same hits, bit for bit
+// AVX2 in its target (-O2 alone) holds both x86-64 paths, with g++ and
+// clang++ the 8-wide one also compiled for AVX-512 (avx512), and picks the
+// widest the CPU runs when the accelerator is built (bvh/dispatch.hpp);
+// simd_path() says which. All of them return the same hits, bit for bit
 // (tests/library_dispatch.cpp).
 #pragma once
 
@@ -90,19 +91,23 @@ enum class bvh_path {
     automatic, ///< the fastest this program runs on this CPU (accelerator::automatic_path)
     scalar,    ///< 4-wide nodes, one value at a time: no SSE (arm64, rt::real = double)
     sse,       ///< 4-wide nodes in SSE (x86-64)
-    avx2       ///< 8-wide nodes in AVX2, where the CPU has it
+    avx2,      ///< 8-wide nodes in AVX2, where the CPU has it
+    avx512     ///< the same, compiled for AVX-512 too (bvh/dispatch.hpp), where the CPU has it
 };
 
 /// The names of the BVH paths; the first is the default.
 inline constexpr detail::enum_name<bvh_path> bvh_path_names[] = {
-    {bvh_path::automatic, "auto"}, {bvh_path::scalar, "scalar"}, {bvh_path::sse, "sse"}, {bvh_path::avx2, "avx2"}};
+    {bvh_path::automatic, "auto"}, {bvh_path::scalar, "scalar"}, {bvh_path::sse, "sse"},
+    {bvh_path::avx2, "avx2"},      {bvh_path::avx512, "avx512"}};
 
 inline const char* name_of(bvh_path path) { return detail::name_in(bvh_path_names, path); }
 
-/// "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)": a path and its node width, for reports.
+/// "avx512 (8-wide)", "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)": a
+/// path and its node width, for reports.
 inline const char* describe(bvh_path path)
 {
     switch (path) {
+    case bvh_path::avx512: return "avx512 (8-wide)";
     case bvh_path::avx2: return "avx2 (8-wide)";
     case bvh_path::sse: return "sse (4-wide)";
     case bvh_path::scalar: return "scalar (4-wide)";
@@ -178,6 +183,10 @@ public:
         else if (path_ == bvh_path::avx2)
             wide_.emplace(prims.data(), prims.size(), options); // bvh/dispatch.hpp
 #endif
+#if RT_BVH_DISPATCH_AVX512
+        else if (path_ == bvh_path::avx512)
+            wide512_.emplace(prims.data(), prims.size(), options);
+#endif
         else
             tree_ = bvh(prims.data(), prims.size(), options);
     }
@@ -193,6 +202,10 @@ public:
 #if RT_BVH_DISPATCH
         else if (wide_) // the 8-wide walk, compiled for AVX2: a call, never inlined here
             found = wide_->closest_hit(r, tmin, tmax, h);
+#endif
+#if RT_BVH_DISPATCH_AVX512
+        else if (wide512_)
+            found = wide512_->closest_hit(r, tmin, tmax, h);
 #endif
         else
             found = tree_.closest_hit(r, tmin, tmax, h);
@@ -212,6 +225,10 @@ public:
         if (wide_)
             return wide_->any_hit(r, tmin, tmax);
 #endif
+#if RT_BVH_DISPATCH_AVX512
+        if (wide512_)
+            return wide512_->any_hit(r, tmin, tmax);
+#endif
         return tree_.any_hit(r, tmin, tmax);
     }
 
@@ -225,6 +242,10 @@ public:
         if (wide_)
             return wide_->stats();
 #endif
+#if RT_BVH_DISPATCH_AVX512
+        if (wide512_)
+            return wide512_->stats();
+#endif
         return tree_.stats();
     }
 
@@ -232,18 +253,24 @@ public:
     /// accelerator has the path it would have had, and tests its list one
     /// primitive at a time).
     bvh_path path() const { return path_; }
-    /// describe(path()): "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)".
+    /// describe(path()): "avx512 (8-wide)", "avx2 (8-wide)", "sse (4-wide)" or "scalar (4-wide)".
     const char* simd_path() const { return describe(path_); }
 
-    /// Whether this program holds two paths and picks one per CPU (x86-64
-    /// compiled without AVX2: bvh/dispatch.hpp): sse or avx2.
+    /// Whether this program holds several paths and picks one per CPU (x86-64
+    /// compiled without AVX2: bvh/dispatch.hpp): sse, avx2 or avx512.
     static constexpr bool dispatches = RT_BVH_DISPATCH != 0;
+    /// Whether it also holds the 8-wide path compiled for AVX-512 (g++ and
+    /// clang++ dispatching programs), which it walks where the CPU has AVX-512.
+    static constexpr bool dispatches_avx512 = RT_BVH_DISPATCH_AVX512 != 0;
 
-    /// The path bvh_path::automatic takes in this program on this CPU: avx2
-    /// where the program holds it and the CPU runs it, else sse on x86-64, else scalar.
+    /// The path bvh_path::automatic takes in this program on this CPU: avx512,
+    /// else avx2, where the program holds it and the CPU runs it, else sse on
+    /// x86-64, else scalar.
     static bvh_path automatic_path()
     {
 #if RT_BVH_DISPATCH
+        if (RT_BVH_DISPATCH_AVX512 && detail::cpu_runs_avx512())
+            return bvh_path::avx512;
         return detail::cpu_runs_avx2() ? bvh_path::avx2 : bvh_path::sse;
 #elif RT_BVH_AVX2
         return bvh_path::avx2;
@@ -264,6 +291,10 @@ public:
 #if RT_BVH_DISPATCH
         if (wide_)
             return f(*wide_);
+#endif
+#if RT_BVH_DISPATCH_AVX512
+        if (wide512_)
+            return f(*wide512_);
 #endif
         return f(tree_);
     }
@@ -295,9 +326,15 @@ private:
         if (asked == bvh_path::automatic || asked == best)
             return best;
 #if RT_BVH_DISPATCH
-        if (asked == bvh_path::sse) // the dispatching program's other path, on any x86-64
+        if (asked == bvh_path::sse) // the dispatching program's other paths: sse on any x86-64,
             return asked;
-        throw error(std::string("expected a BVH path this CPU runs (auto or sse: it has no AVX2), found '") +
+        if (asked == bvh_path::avx2 && detail::cpu_runs_avx2()) // avx2 where avx512 is automatic
+            return asked;
+        if (asked == bvh_path::avx512 && !RT_BVH_DISPATCH_AVX512)
+            throw error("expected a BVH path this program holds (auto, sse or avx2: MSVC compiles no AVX-512 path), "
+                        "found 'avx512'");
+        throw error(std::string("expected a BVH path this CPU runs (auto, sse") +
+                    (detail::cpu_runs_avx2() ? " or avx2: it has no AVX-512" : ": it has no AVX2") + "), found '" +
                     name_of(asked) + "'");
 #else
         throw error(std::string("expected a BVH path this program holds (auto or ") + name_of(best) +
@@ -345,6 +382,10 @@ private:
     /// The 8-wide BVH, compiled for AVX2 (bvh/dispatch.hpp): made, walked and
     /// destroyed only on the avx2 path, so never on a CPU without AVX2.
     std::optional<bvh_w8::bvh> wide_;
+#endif
+#if RT_BVH_DISPATCH_AVX512
+    /// The same, compiled for AVX-512 too: only on the avx512 path.
+    std::optional<bvh_w8_avx512::bvh> wide512_;
 #endif
 };
 

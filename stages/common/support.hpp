@@ -125,9 +125,10 @@ private:
 };
 
 /// The BVH's fast path the world's accelerator takes on this CPU, as
-/// support_world.cpp is compiled: "avx2 (8-wide)", "sse (4-wide)" or "scalar
-/// (4-wide)" (rt::accelerator::automatic_path; x86-64 builds without -mavx2
-/// pick avx2 or sse at run time, rt/bvh/dispatch.hpp).
+/// support_world.cpp is compiled: "avx512 (8-wide)", "avx2 (8-wide)", "sse
+/// (4-wide)" or "scalar (4-wide)" (rt::accelerator::automatic_path; x86-64
+/// builds without -mavx2 pick one of the first three at run time,
+/// rt/bvh/dispatch.hpp).
 std::string simd_path();
 
 /// A ray through a film position (pixels from the bottom-left corner).

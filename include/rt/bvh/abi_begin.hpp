@@ -20,8 +20,9 @@
 // MSVC there too), RT_BVH_DISPATCH is 1: the unit compiles the 4-wide SSE path
 // as its target allows, then the 8-wide AVX2 path a second time under
 // target("avx2,bmi,bmi2,popcnt") in the namespace rt::bvh_w8 (not inline: rt::bvh stays the
-// 4-wide tree), and rt::accelerator, in the namespace bvh_dispatch
-// (RT_BVH_ACCELERATOR_ABI), walks the one the CPU runs. A unit whose target has
+// 4-wide tree), with g++ and clang++ a third time with AVX-512 added in
+// rt::bvh_w8_avx512 (RT_BVH_DISPATCH_AVX512), and rt::accelerator, in the
+// namespace bvh_dispatch (RT_BVH_ACCELERATOR_ABI), walks the widest the CPU runs. A unit whose target has
 // AVX2 (-mavx2, -march=native on an AVX2 machine) skips the dispatch, and so
 // does one that sets RT_BVH_AVX2 itself: -DRT_BVH_AVX2=0 forces the 4-wide
 // path; -DRT_BVH_AVX2=1 the 8-wide one, which needs an AVX2 target.
@@ -34,17 +35,29 @@
 
 #if defined(RT_BVH_AVX2_SECTION)
 // bvh/dispatch.hpp's second section: the 8-wide path, compiled under
-// target("avx2,bmi,bmi2,popcnt") in a unit whose target lacks AVX2
+// target("avx2,bmi,bmi2,popcnt") in a unit whose target lacks AVX2; or its
+// third (RT_BVH_AVX512_SECTION too): the same code under AVX-512's target
+// as well, in rt::bvh_w8_avx512
 #define RT_BVH_SSE 1
 #define RT_BVH_AVX 1
 #define RT_BVH_AVX2 1
 #define RT_BVH_OWNS_SSE
 #define RT_BVH_OWNS_AVX
 #define RT_BVH_OWNS_AVX2
+#if defined(RT_BVH_AVX512_SECTION)
+#define RT_BVH_AVX512 1
+#define RT_BVH_ABI bvh_w8_avx512
+#else
+#define RT_BVH_AVX512 0
 #define RT_BVH_ABI bvh_w8
+#endif
 #define RT_BVH_ABI_INLINE
 #define RT_BVH_DISPATCH 0
+#define RT_BVH_DISPATCH_AVX512 0
 #else
+// RT_BVH_AVX512: 1 only in the third section of bvh/dispatch.hpp (the unit's
+// own path may use AVX-512 too, under -march=native: the compiler's choice)
+#define RT_BVH_AVX512 0
 
 // RT_BVH_SSE: SSE2 is there (every x86-64 compiler) and rt::real is float.
 #if !defined(RT_BVH_SSE)
@@ -93,6 +106,18 @@
 #define RT_BVH_DISPATCH 1
 #else
 #define RT_BVH_DISPATCH 0
+#endif
+
+// RT_BVH_DISPATCH_AVX512: a dispatching unit of g++ or clang++ also compiles
+// the 8-wide path a third time, for CPUs with AVX-512 (F, VL, BW, DQ, CD):
+// the same operations on 256-bit registers, 32 of them, not 16, and with
+// AVX-512's forms of them (as -march=native gives an AVX-512 machine: the
+// walk 0-5% faster, docs/performance.md, "The path picked at run time").
+// MSVC gets no third section: it would not use those registers without /arch.
+#if RT_BVH_DISPATCH && (defined(__GNUC__) || defined(__clang__))
+#define RT_BVH_DISPATCH_AVX512 1
+#else
+#define RT_BVH_DISPATCH_AVX512 0
 #endif
 
 // RT_BVH_ABI: the namespace of this width (see the top of this file), inline.

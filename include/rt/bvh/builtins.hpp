@@ -4,6 +4,7 @@
 //     const int s = rt::detail::highest_bit(17u);   // 4: 2^4 <= 17 < 2^5
 //     rt::detail::prefetch(&items[k + 8]);          // ask for a line we read soon
 //     if (rt::detail::cpu_runs_avx2()) ...          // the 8-wide path may run (bvh/dispatch.hpp)
+//     if (rt::detail::cpu_runs_avx512()) ...        // and its AVX-512 copy
 //
 // GCC and Clang: __builtin_clz, __builtin_prefetch, __builtin_cpu_init and
 // __builtin_cpu_supports (GCC manual, "Other Built-in Functions" and "x86
@@ -80,6 +81,22 @@ inline bool cpu_runs_avx2()
     __builtin_cpu_init(); // idempotent; needed only before constructors ran
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2") &&
            __builtin_cpu_supports("popcnt");
+#else
+    return false;
+#endif
+}
+
+/// Whether this CPU also runs the AVX-512 copy of the 8-wide path
+/// (bvh/dispatch.hpp, compiled by g++ and clang++ only): cpu_runs_avx2() and
+/// AVX-512 F, VL, BW, DQ and CD, with the operating system saving the opmask
+/// and upper registers (GCC's and Clang's __builtin_cpu_supports checks XCR0
+/// bits 5-7 too). False elsewhere.
+inline bool cpu_runs_avx512()
+{
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+    return cpu_runs_avx2() && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+           __builtin_cpu_supports("avx512cd");
 #else
     return false;
 #endif

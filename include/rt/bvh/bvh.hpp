@@ -75,8 +75,10 @@
 #include "wide_collapse.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_ABI, RT_BVH_INLINE, until simd_end.hpp
-#if RT_BVH_AVX2 ? !defined(RT_BVH_BVH_W8) : !defined(RT_BVH_BVH_W4)
-#if RT_BVH_AVX2
+#if RT_BVH_AVX512 ? !defined(RT_BVH_BVH_W8X) : RT_BVH_AVX2 ? !defined(RT_BVH_BVH_W8) : !defined(RT_BVH_BVH_W4)
+#if RT_BVH_AVX512
+#define RT_BVH_BVH_W8X
+#elif RT_BVH_AVX2
 #define RT_BVH_BVH_W8
 #else
 #define RT_BVH_BVH_W4
@@ -369,6 +371,6 @@ private:
 } // namespace RT_BVH_ABI
 } // namespace rt
 
-#endif // RT_BVH_BVH_W8 / _W4
+#endif // RT_BVH_BVH_W8X / _W8 / _W4
 
 #include "simd_end.hpp"

@@ -33,8 +33,10 @@
 #include "packed.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_AVX, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
-#if RT_BVH_AVX2 ? !defined(RT_BVH_LAYOUT_W8) : !defined(RT_BVH_LAYOUT_W4)
-#if RT_BVH_AVX2
+#if RT_BVH_AVX512 ? !defined(RT_BVH_LAYOUT_W8X) : RT_BVH_AVX2 ? !defined(RT_BVH_LAYOUT_W8) : !defined(RT_BVH_LAYOUT_W4)
+#if RT_BVH_AVX512
+#define RT_BVH_LAYOUT_W8X
+#elif RT_BVH_AVX2
 #define RT_BVH_LAYOUT_W8
 #else
 #define RT_BVH_LAYOUT_W4
@@ -195,6 +197,6 @@ inline triangle_block pack_triangle_block(const packed_primitive* prims, std::si
 } // namespace detail
 } // namespace rt
 
-#endif // RT_BVH_LAYOUT_W8 / _W4
+#endif // RT_BVH_LAYOUT_W8X / _W8 / _W4
 
 #include "simd_end.hpp"

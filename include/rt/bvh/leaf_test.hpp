@@ -22,8 +22,10 @@
 #include "packed.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX and the intrinsics, until simd_end.hpp
-#if RT_BVH_AVX2 ? !defined(RT_BVH_LEAF_TEST_W8) : !defined(RT_BVH_LEAF_TEST_W4)
-#if RT_BVH_AVX2
+#if RT_BVH_AVX512 ? !defined(RT_BVH_LEAF_TEST_W8X) : RT_BVH_AVX2 ? !defined(RT_BVH_LEAF_TEST_W8) : !defined(RT_BVH_LEAF_TEST_W4)
+#if RT_BVH_AVX512
+#define RT_BVH_LEAF_TEST_W8X
+#elif RT_BVH_AVX2
 #define RT_BVH_LEAF_TEST_W8
 #else
 #define RT_BVH_LEAF_TEST_W4
@@ -337,6 +339,6 @@ RT_BVH_INLINE int intersect_block(const triangle_block& b, const leaf_ray& r, co
 } // namespace detail
 } // namespace rt
 
-#endif // RT_BVH_LEAF_TEST_W8 / _W4
+#endif // RT_BVH_LEAF_TEST_W8X / _W8 / _W4
 
 #include "simd_end.hpp"

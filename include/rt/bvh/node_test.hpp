@@ -18,8 +18,10 @@
 #include "layout.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp
-#if RT_BVH_AVX2 ? !defined(RT_BVH_NODE_TEST_W8) : !defined(RT_BVH_NODE_TEST_W4)
-#if RT_BVH_AVX2
+#if RT_BVH_AVX512 ? !defined(RT_BVH_NODE_TEST_W8X) : RT_BVH_AVX2 ? !defined(RT_BVH_NODE_TEST_W8) : !defined(RT_BVH_NODE_TEST_W4)
+#if RT_BVH_AVX512
+#define RT_BVH_NODE_TEST_W8X
+#elif RT_BVH_AVX2
 #define RT_BVH_NODE_TEST_W8
 #else
 #define RT_BVH_NODE_TEST_W4
@@ -156,6 +158,6 @@ inline int intersect_children(const bvh_node& node, const node_ray& r, real tmin
 } // namespace detail
 } // namespace rt
 
-#endif // RT_BVH_NODE_TEST_W8 / _W4
+#endif // RT_BVH_NODE_TEST_W8X / _W8 / _W4
 
 #include "simd_end.hpp"

@@ -13,8 +13,10 @@
 #include "parallel_fill.hpp"
 
 #include "abi_begin.hpp" // RT_BVH_ABI, until simd_end.hpp
-#if RT_BVH_AVX2 ? !defined(RT_BVH_WIDE_COLLAPSE_W8) : !defined(RT_BVH_WIDE_COLLAPSE_W4)
-#if RT_BVH_AVX2
+#if RT_BVH_AVX512 ? !defined(RT_BVH_WIDE_COLLAPSE_W8X) : RT_BVH_AVX2 ? !defined(RT_BVH_WIDE_COLLAPSE_W8) : !defined(RT_BVH_WIDE_COLLAPSE_W4)
+#if RT_BVH_AVX512
+#define RT_BVH_WIDE_COLLAPSE_W8X
+#elif RT_BVH_AVX2
 #define RT_BVH_WIDE_COLLAPSE_W8
 #else
 #define RT_BVH_WIDE_COLLAPSE_W4
@@ -96,6 +98,6 @@ private:
 } // namespace detail
 } // namespace rt
 
-#endif // RT_BVH_WIDE_COLLAPSE_W8 / _W4
+#endif // RT_BVH_WIDE_COLLAPSE_W8X / _W8 / _W4
 
 #include "simd_end.hpp"
