@@ -191,6 +191,26 @@ public:
             tree_ = bvh(prims.data(), prims.size(), options);
     }
 
+    /// Calls f(tree) with the BVH it walks (empty for a flat accelerator) and
+    /// returns what f returns, the same type for every path: an rt::bvh, or
+    /// where the program dispatches (bvh/dispatch.hpp) an rt::bvh_w8::bvh on
+    /// the avx2 path and an rt::bvh_w8_avx512::bvh on the avx512 one.
+    /// closest_hit, any_hit and stats go through it; the tests use it to look
+    /// at the tree itself.
+    template <class F>
+    RT_BVH_INLINE decltype(auto) with_tree(F&& f) const
+    {
+#if RT_BVH_DISPATCH
+        if (wide_)
+            return f(*wide_);
+#endif
+#if RT_BVH_DISPATCH_AVX512
+        if (wide512_)
+            return f(*wide512_);
+#endif
+        return f(tree_);
+    }
+
     /// The closest hit in [tmin, tmax] (see the top of this file), with every
     /// field of `rec` filled. Precondition: r.direction is not zero.
     RT_BVH_INLINE bool closest_hit(const ray& r, real tmin, real tmax, hit_record& rec) const
@@ -199,16 +219,8 @@ public:
         bool found = false;
         if (kind_ == accelerator_kind::flat)
             found = closest_hit_flat(flat_, r, tmin, tmax, h);
-#if RT_BVH_DISPATCH
-        else if (wide_) // the 8-wide walk, compiled for AVX2: a call, never inlined here
-            found = wide_->closest_hit(r, tmin, tmax, h);
-#endif
-#if RT_BVH_DISPATCH_AVX512
-        else if (wide512_)
-            found = wide512_->closest_hit(r, tmin, tmax, h);
-#endif
-        else
-            found = tree_.closest_hit(r, tmin, tmax, h);
+        else // a dispatched 8-wide walk is a call, never inlined here
+            found = with_tree([&](const auto& tree) { return tree.closest_hit(r, tmin, tmax, h); });
         if (!found)
             return false;
         complete(r, tmin, tmax, h, rec);
@@ -221,15 +233,7 @@ public:
     {
         if (kind_ == accelerator_kind::flat)
             return any_hit_flat(flat_, r, tmin, tmax);
-#if RT_BVH_DISPATCH
-        if (wide_)
-            return wide_->any_hit(r, tmin, tmax);
-#endif
-#if RT_BVH_DISPATCH_AVX512
-        if (wide512_)
-            return wide512_->any_hit(r, tmin, tmax);
-#endif
-        return tree_.any_hit(r, tmin, tmax);
+        return with_tree([&](const auto& tree) { return tree.any_hit(r, tmin, tmax); });
     }
 
     /// flat or bvh (automatic is resolved when the accelerator is built).
@@ -238,15 +242,7 @@ public:
     /// The BVH's statistics (all zero for a flat accelerator).
     const bvh_stats& stats() const
     {
-#if RT_BVH_DISPATCH
-        if (wide_)
-            return wide_->stats();
-#endif
-#if RT_BVH_DISPATCH_AVX512
-        if (wide512_)
-            return wide512_->stats();
-#endif
-        return tree_.stats();
+        return with_tree([](const auto& tree) -> const bvh_stats& { return tree.stats(); });
     }
 
     /// The fast path its BVH is walked with (never automatic; a flat
@@ -281,24 +277,6 @@ public:
 #endif
     }
 
-    /// Calls f(tree) with the BVH it walks (empty for a flat accelerator) and
-    /// returns what f returns, the same type for either width: an rt::bvh, or
-    /// where the program dispatches (bvh/dispatch.hpp) on the avx2 path an
-    /// rt::bvh_w8::bvh. For the tests, which look at the tree itself.
-    template <class F>
-    decltype(auto) with_tree(F&& f) const
-    {
-#if RT_BVH_DISPATCH
-        if (wide_)
-            return f(*wide_);
-#endif
-#if RT_BVH_DISPATCH_AVX512
-        if (wide512_)
-            return f(*wide512_);
-#endif
-        return f(tree_);
-    }
-
     /// The shape and primitive of a packed primitive's id (id < primitive_count()).
     /// Ids are given in scene order, so shape s holds the ids from
     /// first_id_[s] up to first_id_[s + 1]: the shape is the last one whose
@@ -326,9 +304,9 @@ private:
         if (asked == bvh_path::automatic || asked == best)
             return best;
 #if RT_BVH_DISPATCH
-        if (asked == bvh_path::sse) // the dispatching program's other paths: sse on any x86-64,
+        if (asked == bvh_path::sse) // the dispatching program's other paths: sse on any x86-64
             return asked;
-        if (asked == bvh_path::avx2 && detail::cpu_runs_avx2()) // avx2 where avx512 is automatic
+        if (asked == bvh_path::avx2 && detail::cpu_runs_avx2()) // and avx2 where avx512 is automatic
             return asked;
         if (asked == bvh_path::avx512 && !RT_BVH_DISPATCH_AVX512)
             throw error("expected a BVH path this program holds (auto, sse or avx2: MSVC compiles no AVX-512 path), "
