@@ -41,15 +41,15 @@ import re
 import shutil
 import sys
 import tempfile
-import threading
 import time
 import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Set, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import make_kit  # noqa: E402  (the sibling module)
+from grading.batch import grade_batch  # noqa: E402
 from grading.cache import Cache, Reference, Slot  # noqa: E402
 from grading.common import Deadline, GradeError, SubmissionError, log, parse_stages, write_atomically  # noqa: E402
 from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, junit,  # noqa: E402,F401
@@ -57,8 +57,7 @@ from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, j
 from grading.sandbox import (TestUser, case_filter, choose_user, install_program, list_cases,  # noqa: E402
                              prepare_run_dir, run_case)
 from grading.splice import LineMaps, StudentFile, outside_differences, normalise, read_student_file  # noqa: E402
-from grading.submission import (HEADER_SUFFIXES, find_rt_folder, is_submission, student_name,  # noqa: E402,F401
-                                unpack)
+from grading.submission import HEADER_SUFFIXES, find_rt_folder, unpack  # noqa: E402,F401
 from grading.weights import VISIBILITIES, Weights, load_weights  # noqa: E402,F401
 
 DEFAULT_BUDGET = 600
@@ -422,60 +421,6 @@ def calibrate(ctx: Context, jobs: int, timeout: float) -> str:
             f"{', '.join(f'{s:02d}' for s in ctx.stages)} built in {time.monotonic() - started:.1f} s")
 
 
-def grade_batch(ctx: Context, folder: Path, out: Path, work: Path, jobs: int) -> int:
-    entries = sorted((e for e in folder.iterdir() if is_submission(e)), key=lambda e: e.name)
-    if not entries:
-        raise GradeError(f"{folder}: expected submissions (folders or .zip/.tar.gz/.tgz/.tar archives), found none")
-    names: Dict[Path, str] = {}
-    taken: Set[str] = set()
-    for e in entries:
-        name = student_name(e)
-        names[e] = name if name not in taken else e.name
-        taken.add(names[e])
-    workers = max(1, min(jobs, len(entries)))
-    build_jobs = max(1, (os.cpu_count() or 2) // workers)
-    rows: List[Dict[str, object]] = []
-    pending = list(entries)
-    lock = threading.Lock()
-
-    def worker(k: int) -> None:
-        with ctx.cache.slot(build_jobs, ctx.budget) as slot:
-            while True:
-                with lock:
-                    if not pending:
-                        return
-                    entry = pending.pop(0)
-                student = names[entry]
-                place = work / f"w{k}" / "current"
-                shutil.rmtree(place, ignore_errors=True)
-                place.mkdir(parents=True)
-                os.chmod(place.parent, 0o711)
-                row: Dict[str, object] = {"student": student}
-                try:
-                    outcome = grade_one(ctx, entry, place, slot, build_jobs, 1)
-                    write_reports(ctx, outcome, out / student / "results.json", out / student / "junit.xml")
-                    points = stage_points(outcome.suites)
-                    row.update({f"stage{s:02d}": f"{p:.2f}" for s, p in points.items()})
-                    row["total"] = f"{sum(points.values()):.2f}"
-                    row["status"] = outcome.status
-                    log(f"grade: {student}: {row['total']} ({outcome.status}, {outcome.seconds:.1f} s)")
-                except GradeError as e:
-                    row.update({"total": "", "status": f"error: {str(e).splitlines()[0]}"})
-                    log(f"grade: {student}: {e}")
-                with lock:
-                    rows.append(row)
-
-    threads = [threading.Thread(target=worker, args=(k,)) for k in range(workers)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    rows.sort(key=lambda r: str(r["student"]))
-    write_atomically(out / "grades.csv", grades_csv(rows, ctx.stages))
-    print(f"grade: {len(rows)} submissions graded into {out}; grades in {out / 'grades.csv'}")
-    return 0
-
-
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(description="Grade a student's rt stage by stage.")
     parser.add_argument("submission", nargs="?", help="a folder or a .zip/.tar.gz/.tgz/.tar of include/rt or the repository")
@@ -530,7 +475,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(calibrate(ctx, args.jobs, max(args.budget, 600)))
             return 0
         if args.batch:
-            return grade_batch(ctx, Path(args.batch), Path(args.out), work, args.jobs)
+            return grade_batch(ctx, Path(args.batch), Path(args.out), work, args.jobs, grade_one, write_reports)
         out = Path(args.out)
         results_path = Path(args.results_json) if args.results_json else out / "results.json"
         junit_path = Path(args.junit) if args.junit else out / "junit.xml"

@@ -2,7 +2,7 @@
 """make_workflow.py - GitHub Classroom autograding for a student kit of rt.
 
     python3 tools/make_kit.py --from-stage 3 ../rt-week3
-    python3 tools/classroom/make_workflow.py ../rt-week3 [--stages 3,4] [--weights tools/weights.json]
+    python3 tools/classroom/make_workflow.py ../rt-week3 [--stages 3,4 or 3-5] [--weights tools/weights.json]
 
 writes ../rt-week3/.github/workflows/classroom.yml: on every push, GitHub
 Actions installs rt's build (Ubuntu's packages), configures the kit once, and
@@ -35,6 +35,7 @@ from typing import Dict, List, Optional, Sequence
 TOOLS_DIR = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(TOOLS_DIR))
 import make_kit  # noqa: E402  (tools/make_kit.py)
+from grading.common import GradeError, parse_stages  # noqa: E402  (the grader's: 3, 3,4 or 3-5)
 
 WORKFLOW = Path(".github") / "workflows" / "classroom.yml"
 GRADER = "classroom-resources/autograding-command-grader@v1"
@@ -164,22 +165,13 @@ def workflow_text(steps: List[Dict], stages: Sequence[int]) -> str:
     return "\n".join(out) + "\n"
 
 
-def parse_stages(text: str) -> List[int]:
-    stages = []
-    for word in text.split(","):
-        word = word.strip()
-        if not word.isdigit():
-            raise WorkflowError(f"--stages: expected stage numbers separated by commas (3,4), found '{text}'")
-        stages.append(int(word))
-    return sorted(set(stages))
-
-
 def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(
         description="Write a kit's .github/workflows/classroom.yml for GitHub Classroom's autograding: "
                     "one graded step per stage, worth its visible points.")
     parser.add_argument("kit", type=Path, help="the kit's folder (tools/make_kit.py made it)")
-    parser.add_argument("--stages", help="the stages to grade, e.g. 3,4 (default: the stages the kit strips)")
+    parser.add_argument("--stages",
+                        help="the stages to grade, e.g. 3 or 3,4 or 3-5 (default: the stages the kit strips)")
     parser.add_argument("--weights", type=Path, default=TOOLS_DIR / "weights.json",
                         help="points per stage (default: tools/weights.json)")
     args = parser.parse_args(argv)
@@ -188,16 +180,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         if not (kit / "CMakeLists.txt").is_file() or not (kit / "tests").is_dir():
             raise WorkflowError(f"{kit}: expected a kit of rt (CMakeLists.txt and tests/), found none; "
                                 f"make one with tools/make_kit.py")
-        known = make_kit.known_stages(kit)
-        stages = parse_stages(args.stages) if args.stages else stripped_stages(kit)
+        known = sorted(make_kit.known_stages(kit))
+        try:
+            stages = parse_stages(args.stages, known) if args.stages else stripped_stages(kit)
+        except GradeError as e:     # --stages 3, 3,4 or 3-5, as grade.py and make_autograder.py take
+            raise WorkflowError(str(e))
         if not stages:
             raise WorkflowError(f"{kit}: expected a kit with stages to do, found every stage solved; "
                                 f"name them with --stages")
-        unknown = [s for s in stages if s not in known]
-        if unknown:
-            raise WorkflowError(f"--stages: expected stages with tests in the kit "
-                                f"({', '.join(make_kit.stage_label(s) for s in sorted(known))}), found "
-                                f"{', '.join(make_kit.stage_label(s) for s in unknown)}")
         weights = load_weights(args.weights)
         text = workflow_text(plan_steps(kit, stages, weights), stages)
         target = kit / WORKFLOW

@@ -10,12 +10,50 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from typing import Dict, List, Sequence
 
 MAX_CASE_OUTPUT = 6000
 STATUSES = ("passed", "failed", "crashed", "timeout", "not run")
+
+# What a case prints, a compiler quotes or a member's name holds may be any bytes. XML 1.0
+# allows no control character but tab, line feed and carriage return (NUL included), and
+# neither XML nor JSON (nor UTF-8) holds a lone surrogate, which Python uses for a byte
+# that is not UTF-8 (errors="surrogateescape"). Each becomes visible text: \xNN for a
+# control character or such a byte, \uNNNN for another surrogate or U+FFFE/U+FFFF.
+_NOT_TEXT_RE = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+_NOT_CELL_RE = re.compile("[\x00-\x1f\x7f\ud800-\udfff\ufffe\uffff]")
+
+
+def _shown_char(m: "re.Match[str]") -> str:
+    code = ord(m.group(0))
+    if 0xDC80 <= code <= 0xDCFF:          # a byte that is not UTF-8, as surrogateescape keeps it
+        return f"\\x{code - 0xDC00:02x}"
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
+def clean_text(text: str) -> str:
+    """The text with what XML 1.0, JSON and UTF-8 cannot hold written out as escapes;
+    tabs and line breaks are kept."""
+    return _NOT_TEXT_RE.sub(_shown_char, text)
+
+
+def clean_cell(text: str) -> str:
+    """One line of text for a cell of grades.csv: every control character (line breaks
+    too) written out as an escape."""
+    return _NOT_CELL_RE.sub(_shown_char, text)
+
+
+def _clean_json(value: object) -> object:
+    if isinstance(value, str):
+        return clean_text(value)
+    if isinstance(value, dict):
+        return {clean_text(str(k)): _clean_json(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_clean_json(v) for v in value]
+    return value
 
 
 def clip(text: str, limit: int = MAX_CASE_OUTPUT) -> str:
@@ -148,13 +186,13 @@ def gradescope_results(suites: Sequence[Suite], visibility: str, output: str, se
             "output": suite_output(s, mode_line),
             "visibility": visibility if s.hidden else "visible",
         })
-    return {
+    return _clean_json({
         "score": round(sum(s.points for s in suites), 2),
         "execution_time": int(seconds),
         "output": output,
         "stdout_visibility": "hidden",
         "tests": tests,
-    }
+    })
 
 
 def junit(suites: Sequence[Suite]) -> ET.Element:
@@ -183,6 +221,11 @@ def junit(suites: Sequence[Suite]) -> ET.Element:
                 failure.text = c.output
             else:
                 ET.SubElement(case, "system-out").text = c.output
+    for element in root.iter():     # whatever bytes a case printed, the XML stays well-formed
+        if element.text:
+            element.text = clean_text(element.text)
+        for key, value in element.attrib.items():
+            element.attrib[key] = clean_text(value)
     return root
 
 
@@ -203,7 +246,7 @@ def grades_csv(rows: Sequence[Dict[str, object]], stages: Sequence[int]) -> byte
     writer = csv.DictWriter(out, fieldnames=columns, lineterminator="\n")
     writer.writeheader()
     for row in rows:
-        writer.writerow({k: row.get(k, "") for k in columns})
+        writer.writerow({k: clean_cell(str(row.get(k, ""))) for k in columns})
     return out.getvalue().encode("utf-8")
 
 

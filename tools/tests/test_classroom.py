@@ -113,7 +113,11 @@ class ClassroomWorkflow(unittest.TestCase):
         self.assertIn("found 99", out)
         code, out = workflow(self.finished, "--stages", "three")
         self.assertEqual(code, 2)
-        self.assertIn("expected stage numbers separated by commas (3,4), found 'three'", out)
+        self.assertIn('--stages three: expected stage numbers such as 3 or 3,4 or 3-5, found "three"', out)
+        code, out = workflow(self.finished, "--stages", "3-4")     # a range, as grade.py takes
+        self.assertEqual(code, 0, out)
+        steps = read_workflow((self.finished / make_workflow.WORKFLOW).read_text(encoding="utf-8"))
+        self.assertEqual([s["id"] for s in steps if "id" in s], ["stage-03", "stage-04"])
 
     def test_steps_pass_on_a_finished_kit_and_fail_on_a_stripped_one(self):
         results = {}
