@@ -54,8 +54,9 @@ from grading.cache import Cache, Reference, Slot  # noqa: E402
 from grading.common import Deadline, GradeError, SubmissionError, log, parse_stages, write_atomically  # noqa: E402
 from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, junit,  # noqa: E402,F401
                             junit_bytes, stage_points, table)
-from grading.sandbox import (TestUser, case_filter, choose_user, install_program, list_cases,  # noqa: E402
-                             prepare_run_dir, run_case)
+from grading import judge  # noqa: E402
+from grading.common import run  # noqa: E402
+from grading.sandbox import TestUser, choose_user, reap_all, run_judged, slot_user  # noqa: E402
 from grading.splice import LineMaps, StudentFile, outside_differences, normalise, read_student_file  # noqa: E402
 from grading.submission import HEADER_SUFFIXES, find_rt_folder, unpack  # noqa: E402,F401
 from grading.weights import VISIBILITIES, Weights, load_weights  # noqa: E402,F401
@@ -229,65 +230,73 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
         if s.stage in missing:
             s.remarks.append("Not handed in (graded as not done): " + ", ".join(missing[s.stage]) + ".")
 
-    # the headers each stage's suites compile against
+    by_name = {t.name: t for t in cache.targets(set(ctx.stages))}
+
+    # each stage's server: the student's code of the stage, built as the slot's test user
+    user = slot_user(ctx.user, slot.index)
+    uid, gid = (user.uid, user.gid) if user.dedicated else (None, None)
+    slot.prepare(uid, gid)
     maps = LineMaps(student_lines={rel: f.lines for rel, f in students.items()})
     to_build = [stage for stage in ctx.stages if stage not in refused]
-    for stage in to_build:
-        def body_of(r, stage: int = stage) -> object:
-            if ctx.cumulative or r.stage == stage:
-                mine = accepted.get((r.path, r.begin_line))
-                return mine if mine is not None else "stub"
-            return "reference"
-
-        tests, unit = reference.overlay(stage, body_of, students)
-        maps.roots[str(slot.overlay_root(stage))] = tests
-        maps.roots[str(slot.unit_root(stage))] = unit
-        slot.write_overlay(stage, tests, unit)
-
-    # build
-    # the suites that compile again (their stage has template exercises) first: Ninja starts
-    # them first, and the short units and links fill the other core around them
-    whole = reference.stages_compiled_with_tests()
-    targets = sorted(cache.targets(set(to_build)), key=lambda t: (t.stage not in whole, t.stage, t.hidden))
-    by_name = {t.name: t for t in targets}
-    suite_of = {(s.stage, s.hidden): s for s in suites}
     strip = [str(cache.tree), str(cache.root), str(work)]
-    if targets:
-        log(f"grade: building {len(targets)} suites of stages {', '.join(f'{s:02d}' for s in to_build)}")
-        errors = slot.build(targets, build_jobs, deadline.left(), preexec=ctx.user.limits(ctx.memory_mb * 2))
-        for name, error in errors.items():
-            if error:
-                t = by_name[name]
-                s = suite_of[(t.stage, t.hidden)]
-                if "time budget" in error and deadline.expired():
-                    s.note = f"not run: the time budget of {ctx.budget:.0f} s ran out while building"
-                    s.cases = []
-                elif not s.build_error:
-                    s.build_error = first_compiler_error(error, strip, maps)
-    run_dir = work / "run"
-    bin_dir, home = prepare_run_dir(run_dir, ctx.user)
-    token = uuid.uuid4().hex
-    env = ctx.user.environment(home, token)
-    unreachable = ctx.user.can_reach([(bin_dir, "x")] + [(p, "r") for p in cache.readable_paths()], env)
-    if unreachable is not None:
-        raise GradeError(f"{unreachable}: expected a folder the test user {ctx.user.name} can reach, found one "
-                         f"it cannot (a parent folder without o+x); put --work and --cache in folders "
-                         f"every user may enter, such as /tmp")
+    suite_of = {(s.stage, s.hidden): s for s in suites}
+    if to_build:
+        ensure_judges(ctx, to_build)
+        log(f"grade: building the servers of stages {', '.join(f'{s:02d}' for s in to_build)}")
 
-    # run
+    def build(stage: int) -> Tuple[int, str]:
+        def body_of(r, stage: int = stage) -> object:
+            mine = accepted.get((r.path, r.begin_line))
+            return mine if mine is not None else "stub"
+
+        files = judge.server_overlay(reference, stage, body_of, students)
+        root = slot.write_server(stage, files, judge.server_table(reference, stage), uid, gid)
+        maps.roots[str(root)] = files
+        limit = min(ctx.weights.compile_timeout, deadline.left())
+        if limit <= 0:
+            return stage, f"not built: the time budget of {ctx.budget:.0f} s ran out"
+        code, out = run(user.command(cache.server_command(root, root / "server")), cwd=root, timeout=limit,
+                        env=user.environment(root, uuid.uuid4().hex),
+                        preexec=user.limits(max(ctx.memory_mb * 2, 2048), cpu_seconds=int(limit) + 1))
+        if code == -1:
+            if deadline.expired():
+                return stage, f"not built: the time budget of {ctx.budget:.0f} s ran out"
+            return stage, (f"not built: the stage's compile time limit of {ctx.weights.compile_timeout:.0f} s ran "
+                           f"out (compile_timeout_seconds); look for a template or constexpr computation that "
+                           f"never ends")
+        if code != 0:
+            return stage, first_compiler_error(out, strip, maps)
+        return stage, ""
+
+    jobs = max(1, min(build_jobs, len(to_build)))
+    if to_build:
+        with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
+            built = dict(pool.map(build, to_build))
+        reap_all(user)
+    else:
+        built = {}
+    for (stage, hidden), s in suite_of.items():
+        error = built.get(stage, "")
+        if error.startswith("not built: the time budget"):
+            s.note = "not run: " + error[len("not built: "):] + " while building"
+        elif error:
+            s.build_error = error
+
+    # run: each case in its judge, the stage's server answering its calls
+    run_dir = slot.path
     for s in suites:
         if s.build_error or s.refused or s.note:
             continue
+        server = slot.server_dir(s.stage) / "server"
         stage_deadline = time.monotonic() + ctx.weights.stage_timeout
-        cases: List[Tuple[str, Case]] = []
+        cases: List[Tuple[Path, int, Case]] = []
         for name in s.targets:
             t = by_name[name]
-            program = install_program(slot.program(t), bin_dir, ctx.user)
-            names, problem = list_cases(program, _read(t.source), ctx.user, env, home)
-            if problem:
-                s.note = f"not run: {name}: {problem}"
+            known = cache.cases(t)
+            if known is None:
+                s.note = f"not run: {name}: its judge was not calibrated"
                 break
-            cases += [(str(program), Case(n)) for n in names]
+            cases += [(cache.judge_program(t), int(expected), Case(str(case))) for case, expected, _ in known]
         if s.note:
             continue
         if not cases:
@@ -295,8 +304,9 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
             continue
         log(f"grade: running {s.label}: {len(cases)} cases")
 
-        def one(item: Tuple[str, Case], s: Suite = s, stage_deadline: float = stage_deadline) -> None:
-            program, case = item
+        def one(item: Tuple[Path, int, Case], s: Suite = s, stage_deadline: float = stage_deadline,
+                server: Path = server) -> None:
+            program, expected, case = item
             left = min(stage_deadline - time.monotonic(), deadline.left())
             if deadline.left() <= 0:
                 case.output = f"not run: the time budget of {ctx.budget:.0f} s ran out"
@@ -305,11 +315,11 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
                 case.output = (f"not run: the stage's time limit of {ctx.weights.stage_timeout:.0f} s was "
                                f"used up by the cases before it")
                 return
-            case.status, output, case.seconds = run_case(
-                [program, f"--test-case={case_filter(case.name)}", "--no-version"], str(home),
-                min(ctx.weights.case_timeout, left), ctx.memory_mb, user=ctx.user, env=env, doctest=True)
+            case.status, output, case.seconds, _ = run_judged(
+                program, case.name, server, run_dir, min(ctx.weights.case_timeout, left), ctx.memory_mb, user,
+                expected)
             output = maps.rewrite(output)
-            for prefix in strip + [str(run_dir)]:
+            for prefix in strip:
                 output = output.replace(prefix.rstrip("/") + "/", "")
             case.output = clip(output)
 
@@ -319,8 +329,8 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
         else:
             for item in cases:
                 one(item)
-        s.cases = [c for _, c in cases]
-        ctx.user.reap(token)
+        s.cases = [c for _, _, c in cases]
+        reap_all(user)
     not_run = sum(s.not_run for s in suites)
     skipped = [s.label for s in suites if s.note.startswith("not run")]
     parts = ([f"{not_run} cases not run"] if not_run else []) + (["suites not run: " + ", ".join(skipped)]
@@ -391,6 +401,17 @@ def make_context(args: argparse.Namespace, work: Path) -> Context:
             raise GradeError(f"{hidden}: expected a folder of hidden suites, found none")
     stages = parse_stages(args.stages, sorted(reference.stages))
     user = choose_user(args.run_as)
+    # the test user compiles and runs the submissions: it must read neither the reference's
+    # bodies nor the hidden suites
+    secret = [reference.root / rel for rel in sorted(reference.by_file) if rel.startswith("include/")][:1]
+    if hidden is not None:
+        secret += [hidden] + sorted(p for p in hidden.rglob("*.cpp"))[:1]
+    readable = user.first_readable(secret, user.environment(Path("/"), uuid.uuid4().hex))
+    if readable is not None:
+        top = hidden if hidden is not None and (readable == hidden or hidden in readable.parents) else reference.root
+        raise GradeError(f"{readable}: expected a file the test user {user.name} cannot read (it compiles and runs "
+                         f"the submissions, and this holds the reference's code or the hidden tests), found it "
+                         f"readable; run `chmod -R go-rwx {top}`, or grade from a copy only you can read")
     cache = Cache(cache_dir, reference, hidden)
     cache.prepare()
     ctx = Context(reference, weights, stages, cache, user, args.cumulative, args.budget, args.memory_mb)
@@ -399,26 +420,88 @@ def make_context(args: argparse.Namespace, work: Path) -> Context:
     return ctx
 
 
-def calibrate(ctx: Context, jobs: int, timeout: float) -> str:
-    """Prepares the cache's first slot and builds the chosen stages' suites with their
-    exercises not done, so that a submission rebuilds only what it changes."""
+def calibrate(ctx: Context, jobs: int, timeout: float, stages: Optional[Sequence[int]] = None) -> str:
+    """Builds the judges of the chosen stages and the reference's servers, lists each
+    judge's cases and runs each with the reference's server, to record the assertions a
+    correct answer makes (a case passes only with as many)."""
     started = time.monotonic()
-    with ctx.cache.slot(jobs, timeout) as slot:
-        for stage in ctx.stages:
-            slot.write_overlay(stage, *ctx.reference.stub_state(stage))
-        targets = ctx.cache.targets(set(ctx.stages))
-        errors = slot.build(targets, jobs, timeout)
-    broken = [name for name, error in errors.items() if error]
+    stages = list(stages if stages is not None else ctx.stages)
+    cache, reference = ctx.cache, ctx.reference
+    log(f"grade: building the judges of stages {', '.join(f'{s:02d}' for s in stages)}")
+    cache.build_judges(set(stages), jobs, timeout)
+    grader = TestUser("grader", os.getuid(), os.getgid())   # the reference's code is trusted
+
+    def build_reference(stage: int) -> str:
+        files = judge.server_overlay(reference, stage, lambda r: "reference", {})
+        root = cache.reference_server(stage).parent
+        shutil.rmtree(root, ignore_errors=True)
+        for rel in reference.include_files:
+            destination = root / rel
+            destination.parent.mkdir(parents=True, exist_ok=True)
+            if rel in files:
+                destination.write_text(files[rel].text, encoding="utf-8")
+            else:
+                shutil.copyfile(reference.root / rel, destination)
+        (root / "judge_table.hpp").write_text(judge.server_table(reference, stage), encoding="utf-8")
+        code, out = run(cache.server_command(root, root / "server"), cwd=root, timeout=timeout)
+        return "" if code == 0 else first_compiler_error(out, [str(cache.root)])
+
+    with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
+        errors = dict(zip(stages, pool.map(build_reference, stages)))
+    broken = {s: e for s, e in errors.items() if e}
     if broken:
-        raise GradeError("the suites do not build with the exercises not done: " + ", ".join(broken) + "\n" +
-                         "\n".join(first_compiler_error(errors[n], [str(ctx.cache.root)]) for n in broken[:1]))
-    unreachable = ctx.user.can_reach([(p, "r") for p in ctx.cache.readable_paths()],
-                                     ctx.user.environment(ctx.cache.root, uuid.uuid4().hex))
-    if unreachable is not None:
-        raise GradeError(f"{unreachable}: expected a folder the test user {ctx.user.name} can read, found one it "
-                         f"cannot (a parent folder without o+x); put the cache where every user may enter")
-    return (f"grade: calibrated {ctx.cache.root}: {len(targets)} suites of stages "
-            f"{', '.join(f'{s:02d}' for s in ctx.stages)} built in {time.monotonic() - started:.1f} s")
+        stage, error = sorted(broken.items())[0]
+        raise GradeError(f"the reference's server of stage {stage:02d} does not build (a static C++ build: "
+                         f"libc6-dev and libstdc++ are needed):\n{error}")
+    found: Dict[str, List[List[object]]] = {}
+    runs: List[Tuple[str, Path, Path, str]] = []
+    for t in cache.targets(set(stages)):
+        program = cache.judge_program(t)
+        code, out = run([str(program), "--list-test-cases", "--no-version"], cwd=cache.root, timeout=60)
+        names = [l for l in out.splitlines() if l.strip() and not l.startswith("[doctest]") and not l.startswith("=====")]
+        source = _read(t.source)
+        if code != 0:
+            raise GradeError(f"{t.name}: its cases could not be listed:\n{out[-2000:]}")
+        if "TEST_CASE_TEMPLATE" not in source:
+            expected = len(re.findall(r"^\s*(?:TEST_CASE|TEST_CASE_FIXTURE|SCENARIO)\s*\(", source, re.MULTILINE))
+            if len(names) != expected or len(set(names)) != len(names):
+                raise GradeError(f"{t.name}: expected {expected} distinct cases, as in its source, found "
+                                 f"{len(names)} listed by its judge")
+        found[t.name] = [[n, 0, False] for n in names]
+        runs += [(t.name, program, cache.reference_server(t.stage), n) for n in names]
+
+    def run_one(item: Tuple[str, Path, Path, str]) -> Tuple[str, str, int, bool, str]:
+        name, program, server, case = item
+        status, output, _, verdict = run_judged(program, case, server, cache.root, ctx.weights.case_timeout,
+                                                ctx.memory_mb, grader, 0)
+        return name, case, verdict.assertions if verdict else 0, status == "passed", output
+
+    failing = []
+    with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
+        for name, case, assertions, passed, output in pool.map(run_one, runs):
+            for entry in found[name]:
+                if entry[0] == case:
+                    entry[1], entry[2] = assertions, passed
+            if not passed:
+                failing.append(f"{name}: {case}")
+    cache.record_cases(found)
+    note = ""
+    if failing:
+        note = (f"; {len(failing)} cases fail with the reference's own code and can be passed by no submission: "
+                + "; ".join(failing[:5]))
+        log("grade: " + note[2:])
+    return (f"grade: calibrated {cache.root}: the judges of {len(found)} suites of stages "
+            f"{', '.join(f'{s:02d}' for s in stages)}, {len(runs)} cases run with the reference, in "
+            f"{time.monotonic() - started:.1f} s{note}")
+
+
+def ensure_judges(ctx: Context, stages: Sequence[int]) -> None:
+    """Calibrates the stages whose judges are not (the first grading with a new cache)."""
+    missing = sorted({t.stage for t in ctx.cache.targets(set(stages)) if ctx.cache.cases(t) is None})
+    if missing:
+        log(f"grade: the judges of stages {', '.join(f'{s:02d}' for s in missing)} are not calibrated: "
+            f"calibrating them now (--calibrate does it once, ahead)")
+        log(calibrate(ctx, os.cpu_count() or 2, max(ctx.budget, 600), missing))
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

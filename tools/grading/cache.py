@@ -5,23 +5,28 @@
       key                   what the cache was made from (the reference, hidden suites, grader)
       grader.cmake          the grader's addition to rt's build (GRADER_CMAKE)
       tree/                 the reference with every exercise stripped and no instructor-only file
-                            (its tests/data may be read by the test user: the suites open it)
-      hidden/               the hidden suites (their data/ may be read by the test user)
-      slots/K/              one build per submission graded at once (batch grading uses several)
-        overlay/stageNN/include/   the headers stage NN's suites compile against
-        build/              one CMake build of tree/ (Ninja)
+      hidden/               the hidden suites
+      judge/src/            tools/grading/judge/, the judge's own sources
+      judge/overlay/stageNN/   the headers stage NN's judge compiles against (its bodies call
+                            the server) and judge_table.cpp (what the judge serves)
+      judge/build/          one CMake build of tree/: every suite's program is a judge
+      judge/reference/stageNN/  the server built with the reference's bodies (calibration)
+      judge/cases.json      each judge's cases, and the assertions each makes with the reference
+      public/               what the test user reads to compile a server (every user may):
+                            the judge's sources for the server, third_party/, server.flags
+      slots/K/              one per submission graded at once (batch grading uses several)
+        server/stageNN/     the student's server of stage NN, owned by the slot's test user
 
-Every stage suite's executable (test_stageNN_*, test_hidden_stageNN_*) compiles against its
-own stage's overlay instead of tree/include: the reference's headers with, in the default
-mode, the student's regions of stage NN and the reference's regions of every other stage.
-A submission rewrites only the overlay files whose text changes (the others keep their
-times), so Ninja rebuilds only the suites whose stage the submission touches. The
-doctest runner and the configuration are built once, when the slot is made.
+A judge holds no line of the student's: the same judges grade every submission, built once.
+A submission compiles one small program a stage, its server, as the test user
+(tools/grading/judge.py says what goes into it; tools/grading/judge/README.md why).
 """
 
 from __future__ import annotations
 
 import contextlib
+import json
+import shlex
 import fcntl
 import hashlib
 import os
@@ -33,51 +38,40 @@ from pathlib import Path
 from typing import Dict, Iterator, List, Optional, Sequence, Set, Tuple
 
 from .common import GradeError, log, run, write_atomically
-from .splice import Composed, compose, split_form
+from . import judge
+from .splice import Composed
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import make_kit  # noqa: E402
 
-GRADER_VERSION = "2"       # part of the cache's key, with the grader's own source
+GRADER_VERSION = "3"       # part of the cache's key, with the grader's own source
 MAX_SLOTS = 32
 
 # Included by rt's project() (CMAKE_PROJECT_rt_INCLUDE); at the end of the configuration it
-# points each stage suite at its stage's overlay, links the unit that defines the stage's
-# functions (see Reference.split), and turns off the compiler's source excerpts (an excerpt
-# of a line outside the student's region could show the reference's code).
-GRADER_CMAKE = r"""# Written by tools/grade.py (tools/grading/cache.py): each stage suite compiles against
-# the headers of its own stage, RT_GRADER_OVERLAYS/stageNN/include.
-cmake_language(DEFER CALL _rt_grader_overlays)
-function(_rt_grader_overlays)
+# makes each stage suite its stage's judge: compiled against the judge's overlay of the
+# stage, with front.hpp first, and with what the judge serves and its verdict listener.
+# _GLIBCXX_ASSERTIONS: an index the student's values put out of range stops the judge
+# (a failed case), never reads past a vector.
+GRADER_CMAKE = r"""# Written by tools/grade.py (tools/grading/cache.py): each stage suite is built as its
+# stage's judge (tools/grading/judge/README.md).
+cmake_language(DEFER CALL _rt_grader_judges)
+function(_rt_grader_judges)
   if(NOT IS_DIRECTORY "${CMAKE_SOURCE_DIR}/tests")
     return()
   endif()
   get_property(targets DIRECTORY "${CMAKE_SOURCE_DIR}/tests" PROPERTY BUILDSYSTEM_TARGETS)
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-    set(quiet -fno-diagnostics-show-caret -fdiagnostics-color=never)
-  elseif(CMAKE_CXX_COMPILER_ID MATCHES "Clang")
-    set(quiet -fno-caret-diagnostics -fno-color-diagnostics)
-  endif()
   foreach(target IN LISTS targets)
     if(NOT target MATCHES "^test_(hidden_)?stage([0-9][0-9])_")
       continue()
     endif()
     set(stage "${CMAKE_MATCH_2}")
-    set(overlay "${RT_GRADER_OVERLAYS}/stage${stage}")
-    target_include_directories(${target} BEFORE PRIVATE "${overlay}/include")
-    target_compile_options(${target} PRIVATE ${quiet})
-    # the stage's functions that are not templates: compiled once, in a unit of their own
-    if(EXISTS "${overlay}/impl.cpp")
-      if(NOT TARGET rt_grader_impl_stage${stage})
-        add_library(rt_grader_impl_stage${stage} OBJECT "${overlay}/impl.cpp")
-        target_link_libraries(rt_grader_impl_stage${stage} PRIVATE rt_test_main)
-        target_include_directories(rt_grader_impl_stage${stage} BEFORE PRIVATE "${overlay}/impl/include")
-        target_compile_options(rt_grader_impl_stage${stage} PRIVATE ${quiet})
-        if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-          target_compile_options(rt_grader_impl_stage${stage} PRIVATE -O0)
-        endif()
-      endif()
-      target_link_libraries(${target} PRIVATE rt_grader_impl_stage${stage})
+    set(overlay "${RT_GRADER_JUDGE}/overlay/stage${stage}")
+    target_include_directories(${target} BEFORE PRIVATE "${overlay}/include" "${RT_GRADER_JUDGE}/src")
+    target_sources(${target} PRIVATE "${overlay}/judge_table.cpp" "${RT_GRADER_JUDGE}/src/verdict.cpp")
+    target_compile_options(${target} PRIVATE -include "${RT_GRADER_JUDGE}/src/front.hpp")
+    target_compile_definitions(${target} PRIVATE _GLIBCXX_ASSERTIONS)
+    if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+      target_compile_options(${target} PRIVATE -O2)   # after the suite's -O0: a judge is built once
     endif()
   endforeach()
 endfunction()
@@ -118,19 +112,6 @@ class Reference:
         self.doc_of = {s: make_kit.stage_doc(self.root, s) for s in self.stages}
         self.include_files = [f for f in self.plan.files if f.startswith("include/")]
         self._texts: Dict[str, str] = {}
-        # (file, index of the region in by_file[file]) -> the line that makes a unit emit its
-        # function: the regions whose functions compile apart from the tests (splice.split_form)
-        self.split: Dict[Tuple[str, int], str] = {}
-        count: Dict[int, int] = {}
-        for rel, regions in self.by_file.items():
-            if not rel.startswith("include/"):
-                continue
-            lines = self.text(rel).split("\n")
-            for k, r in enumerate(regions):
-                count[r.stage] = count.get(r.stage, 0) + 1
-                form = split_form(lines, r, f"{r.stage:02d}_{count[r.stage]}")
-                if form is not None:
-                    self.split[(rel, k)] = form
 
     def text(self, rel: str) -> str:
         if rel not in self._texts:
@@ -140,50 +121,14 @@ class Reference:
     def titles(self) -> Dict[int, str]:
         return {s: ", ".join(Path(f).stem[8:].replace("_", " ") for f in files) for s, files in self.stages.items()}
 
-    def stages_compiled_with_tests(self) -> Set[int]:
-        """The stages with an exercise that compiles with the tests that call it (a template)."""
-        return {r.stage for rel, regions in self.by_file.items() if rel.startswith("include/")
-                for k, r in enumerate(regions) if (rel, k) not in self.split}
-
-    def impl_source(self, stage: int) -> Optional[str]:
-        """The unit that defines stage `stage`'s functions that compile apart (None when it
-        has none): it includes their headers, whose overlay adds a pointer to each."""
-        files = sorted({rel for (rel, k) in self.split if self.by_file[rel][k].stage == stage})
-        if not files:
-            return None
-        return ("// Written by tools/grade.py: the functions of stage %02d that are not templates,\n"
-                "// compiled once here instead of in every suite that calls them.\n" % stage +
-                "".join(f"#include <{rel[len('include/'):]}>\n" for rel in files))
-
-    def overlay(self, stage: int, body_of, students: Dict[str, object]) -> Tuple[Dict[str, Composed],
-                                                                                   Dict[str, Composed]]:
-        """Stage `stage`'s headers: those its suites compile against, where the functions of
-        the stage that compile apart are declarations, and those of its own unit, where they
-        are defined. body_of(region) chooses each region's body: "reference", "stub" or the
-        student's."""
-        tests, unit = {}, {}
-        for rel, regions in self.by_file.items():
-            if not rel.startswith("include/"):
-                continue
-            choice = {k: body_of(r) for k, r in enumerate(regions)}
-            apart = {k: self.split[(rel, k)] for k, r in enumerate(regions)
-                     if r.stage == stage and (rel, k) in self.split}
-            student = students.get(rel)
-            tests[rel] = compose(rel, self.text(rel), regions, choice, self.doc_of, student, declare=apart)
-            unit[rel] = (compose(rel, self.text(rel), regions, choice, self.doc_of, student, keep=apart)
-                         if apart else tests[rel])
-        return tests, unit
-
-    def stub_state(self, stage: int) -> Tuple[Dict[str, Composed], Dict[str, Composed]]:
-        """Stage `stage`'s headers before any submission: the kit's not-done bodies in that
-        stage's regions, the reference's everywhere else."""
-        return self.overlay(stage, lambda r: "stub" if r.stage == stage else "reference", {})
-
     def key(self, hidden: Optional[Path]) -> str:
         h = hashlib.sha256()
         h.update(f"grader {GRADER_VERSION}\n{GRADER_CMAKE}\n".encode())
-        for part in sorted(Path(__file__).resolve().parent.glob("*.py")):   # the grader itself
-            h.update(part.read_bytes())
+        grading = Path(__file__).resolve().parent
+        # what the cache's programs are made by: the overlays, the judges' sources and build
+        made_by = [grading / name for name in ("cache.py", "judge.py", "splice.py")]
+        for part in made_by + sorted((grading / "judge").glob("*.[ch]pp")):
+            h.update(part.name.encode() + b"\0" + part.read_bytes())
         h.update(f"CXX={os.environ.get('CXX', '')} cmake={shutil.which('cmake')} "
                  f"ninja={shutil.which('ninja')}\n".encode())
         for rel in self.plan.files:
@@ -237,6 +182,11 @@ def _flock(path: Path, blocking: bool = True) -> Iterator[Optional[int]]:
         os.close(fd)
 
 
+# The judge's sources a server compiles with (every user may read them: they are the grader's
+# public code, and hold no body of the reference).
+SERVER_SOURCES = ("front.hpp", "remote.hpp", "arguments.hpp", "link.hpp", "wire.hpp", "confine.hpp", "server.cpp")
+
+
 class Cache:
     def __init__(self, root: Path, reference: Reference, hidden: Optional[Path]):
         self.root = root.resolve()
@@ -244,7 +194,10 @@ class Cache:
         self.tree = self.root / "tree"
         self.hidden = self.root / "hidden" if hidden is not None else None
         self.hidden_source = hidden
+        self.judge = self.root / "judge"
+        self.public = self.root / "public"
         self.key = ""
+        self._cases: Optional[Dict[str, List[List[object]]]] = None
 
     # ----------------------------------------------------------------------
     def prepare(self) -> None:
@@ -258,13 +211,13 @@ class Cache:
                 return
             if key_file.exists():
                 log(f"grade: {self.root}: made from other files; making it again")
-            for old in ("tree", "hidden", "slots", "key", "grader.cmake"):
+            for old in ("tree", "hidden", "slots", "judge", "public", "key", "grader.cmake"):
                 p = self.root / old
                 if p.is_dir():
                     shutil.rmtree(p)
                 elif p.exists():
                     p.unlink()
-            (self.root / "slots").mkdir(mode=0o700)
+            (self.root / "slots").mkdir(mode=0o711)
             staging = self.root / "tree.tmp"
             shutil.rmtree(staging, ignore_errors=True)
             make_kit.write_tree(self.reference.root, self.reference.plan, staging)
@@ -272,17 +225,31 @@ class Cache:
             if self.hidden is not None:
                 shutil.copytree(self.hidden_source, self.hidden)
             write_atomically(self.root / "grader.cmake", GRADER_CMAKE.encode(), 0o600)
+            # the judge: its sources, and each stage's overlay and table
+            shutil.copytree(judge.JUDGE_SOURCES, self.judge / "src",
+                            ignore=shutil.ignore_patterns("README.md", "__pycache__"))
+            for stage in self.reference.stages:
+                overlay = self.judge / "overlay" / f"stage{stage:02d}"
+                for rel in self.reference.include_files:
+                    destination = overlay / rel
+                    destination.parent.mkdir(parents=True, exist_ok=True)
+                    shutil.copy2(self.reference.root / rel, destination)
+                for rel, composed in judge.judge_overlay(self.reference, stage).items():
+                    (overlay / rel).write_text(composed.text, encoding="utf-8")
+                (overlay / "judge_table.cpp").write_text(judge.judge_table(self.reference, stage), encoding="utf-8")
+            # what a server compiles with, for every user
+            for name in SERVER_SOURCES:
+                destination = self.public / "judge" / name
+                destination.parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(judge.JUDGE_SOURCES / name, destination)
+            if (self.tree / "third_party").is_dir():
+                shutil.copytree(self.tree / "third_party", self.public / "third_party")
             _private_tree(self.tree, [self.tree / "tests" / "data"])
+            _private_tree(self.judge, [])
             if self.hidden is not None:
                 _private_tree(self.hidden, [self.hidden / "data"])
+            _public_tree(self.public)
             write_atomically(key_file, (self.key + "\n").encode(), 0o600)
-
-    def readable_paths(self) -> List[Path]:
-        """What the test programs open: the suites' data."""
-        paths = [self.tree / "tests" / "data"]
-        if self.hidden is not None:
-            paths.append(self.hidden / "data")
-        return [p for p in paths if p.is_dir()]
 
     def targets(self, stages: Set[int]) -> List[Target]:
         out = []
@@ -296,145 +263,177 @@ class Cache:
                     out.append(Target(f"test_hidden_{f.stem}", stage, True, f))
         return out
 
+    # ----------------------------------------------------------------------
+    # the judges, built once
+    def judge_program(self, target: Target) -> Path:
+        return self.judge / "build" / "tests" / target.name
+
+    def build_judges(self, stages: Set[int], jobs: int, timeout: float) -> None:
+        """Configures the judges' build (once) and builds the judges of `stages`."""
+        build = self.judge / "build"
+        with _flock(self.root / ".judge.lock"):
+            if not (build / "build.ninja").is_file():
+                if shutil.which("ninja") is None:
+                    raise GradeError("expected ninja on PATH, found none; install ninja-build")
+                true = shutil.which("true") or "/bin/true"
+                configure = ["cmake", "-S", str(self.tree), "-B", str(build), "-G", "Ninja",
+                             "-DCMAKE_BUILD_TYPE=Release", "-DRT_WERROR=OFF", "-DRT_BUILD_STAGES=OFF",
+                             "-DRT_INSTALL=OFF", "-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF",
+                             "-DCMAKE_EXPORT_COMPILE_COMMANDS=ON",
+                             f"-DCMAKE_PROJECT_rt_INCLUDE={self.root / 'grader.cmake'}",
+                             f"-DRT_GRADER_JUDGE={self.judge}",
+                             # the cases are listed by the grader, never while building
+                             f"-DCMAKE_CROSSCOMPILING_EMULATOR={true}"]
+                if self.hidden is not None:
+                    configure.append(f"-DRT_HIDDEN_TESTS_DIR={self.hidden}")
+                code, out = run(configure, timeout=timeout)
+                if code != 0:
+                    shutil.rmtree(build, ignore_errors=True)
+                    raise GradeError("the reference does not configure:\n" + "\n".join(out.splitlines()[-30:]))
+            targets = self.targets(stages)
+            if not targets:
+                return
+            code, out = run(["ninja", "-C", str(build), "-j", str(jobs)] + [t.name for t in targets], timeout=timeout)
+            if code != 0:
+                raise GradeError("the judges do not build:\n" + "\n".join(out.splitlines()[-30:]))
+            self._write_server_flags(build)
+
+    def _write_server_flags(self, build: Path) -> None:
+        """The compiler and its options for a server, taken from a judge's own command
+        (the dependencies' include folders and definitions), without the cache's folders."""
+        commands = json.loads((build / "compile_commands.json").read_text(encoding="utf-8"))
+        entry = next((c for c in commands if re.search(r"[/\\]stage\d\d_[^/\\]*\.cpp$", c.get("file", ""))), None)
+        if entry is None:
+            raise GradeError(f"{build}: expected a stage suite in compile_commands.json, found none")
+        words = entry["arguments"] if "arguments" in entry else shlex.split(entry["command"])
+        compiler, kept, k = words[0], [], 1
+        private = str(self.root)
+        while k < len(words):
+            w = words[k]
+            k += 1
+            if w in ("-o", "-c", "-MF", "-MT", "-MQ", "-include", "-x"):
+                k += 1
+                continue
+            if w in ("-I", "-isystem"):
+                path, k = words[k], k + 1
+                if not path.startswith(private):
+                    kept += [w, path]
+                continue
+            if w.startswith(("-I", "-isystem")):
+                if private not in w:
+                    kept.append(w)
+                continue
+            if w.startswith("-D"):
+                if not re.match(r"-D(_GLIBCXX_ASSERTIONS|RT_TEST_DATA_DIR|RT_SHARED_DIR|RT_BVH_AVX2)\b", w):
+                    kept.append(w)
+                continue
+            if w.startswith(("-std=", "-m", "-pthread")) or (w.startswith("-f") and "diagnostics" not in w):
+                kept.append(w)
+        version = run([compiler, "--version"], timeout=60)[1]
+        limits = ["-ferror-limit=5"] if "clang" in version.lower() else ["-fmax-errors=5"]
+        flags = {"compiler": compiler, "options": kept + ["-O0", "-ftemplate-backtrace-limit=4"] + limits}
+        write_atomically(self.public / "server.json", (json.dumps(flags, indent=1) + "\n").encode(), 0o644)
+
+    def server_command(self, source_dir: Path, output: Path) -> List[str]:
+        """The command that builds a server from the headers in source_dir/include and
+        source_dir/judge_table.hpp."""
+        flags = json.loads((self.public / "server.json").read_text(encoding="utf-8"))
+        public = self.public
+        return ([flags["compiler"]] + flags["options"] +
+                ["-I", str(source_dir), "-I", str(source_dir / "include"), "-I", str(public / "judge"),
+                 "-I", str(public / "third_party"), "-include", str(public / "judge" / "front.hpp"),
+                 str(public / "judge" / "server.cpp"), "-o", str(output), "-static", "-pthread"])
+
+    # ----------------------------------------------------------------------
+    # the cases, with what the reference's run of each asserts
+    def cases_file(self) -> Path:
+        return self.judge / "cases.json"
+
+    def cases(self, target: Target) -> Optional[List[List[object]]]:
+        """[[name, assertions, passed], ...] of the target's judge with the reference's
+        server, or None when it was not calibrated."""
+        if self._cases is None:
+            try:
+                self._cases = json.loads(self.cases_file().read_text(encoding="utf-8"))
+            except (OSError, ValueError):
+                self._cases = {}
+        return self._cases.get(target.name)
+
+    def record_cases(self, found: Dict[str, List[List[object]]]) -> None:
+        with _flock(self.root / ".judge.lock"):
+            try:
+                known = json.loads(self.cases_file().read_text(encoding="utf-8"))
+            except (OSError, ValueError):
+                known = {}
+            known.update(found)
+            write_atomically(self.cases_file(), (json.dumps(known, indent=1) + "\n").encode(), 0o600)
+        self._cases = None
+
+    def reference_server(self, stage: int) -> Path:
+        return self.judge / "reference" / f"stage{stage:02d}" / "server"
+
     @contextlib.contextmanager
     def slot(self, jobs: int, timeout: float) -> Iterator["Slot"]:
-        """A slot no other grader uses, made when needed (configured, its doctest runner built)."""
+        """A slot no other grader uses."""
         for index in range(MAX_SLOTS):
             path = self.root / "slots" / str(index)
             with _flock(path.parent / f"{index}.lock", blocking=False) as fd:
                 if fd is None:
                     continue
-                slot = Slot(self, index, path)
-                slot.ensure(jobs, timeout)
-                yield slot
+                path.mkdir(parents=True, exist_ok=True)
+                os.chmod(path, 0o711)
+                yield Slot(self, index, path)
                 return
         raise GradeError(f"{self.root}: expected a free build slot, found {MAX_SLOTS} in use")
 
 
+def _public_tree(top: Path) -> None:
+    for dirpath, dirnames, filenames in os.walk(top):
+        os.chmod(dirpath, 0o755)
+        for name in filenames:
+            p = os.path.join(dirpath, name)
+            if not os.path.islink(p):
+                os.chmod(p, 0o644)
+
+
 class Slot:
+    """One submission's folder: its servers, built and run as the slot's test user."""
+
     def __init__(self, cache: Cache, index: int, path: Path):
         self.cache = cache
         self.index = index
         self.path = path
-        self.build_dir = path / "build"
-        self.overlays = path / "overlay"
 
-    def overlay_root(self, stage: int) -> Path:
-        """Holds include/ (the headers stage NN's suites compile against), impl/include/ (those
-        of its unit) and impl.cpp (the unit)."""
-        return self.overlays / f"stage{stage:02d}"
+    def server_dir(self, stage: int) -> Path:
+        return self.path / "server" / f"stage{stage:02d}"
 
-    def unit_root(self, stage: int) -> Path:
-        return self.overlay_root(stage) / "impl"
+    def prepare(self, uid: Optional[int], gid: Optional[int]) -> None:
+        """An empty server folder owned by the test user (uid) when there is one, closed
+        to every other user."""
+        top = self.path / "server"
+        if top.exists():
+            shutil.rmtree(top)
+        top.mkdir(mode=0o700)
+        if uid is not None:
+            os.chown(top, uid, gid)
 
-    def ensure(self, jobs: int, timeout: float) -> None:
-        ready = self.path / "ready"
-        if ready.is_file() and ready.read_text().strip() == self.cache.key:
-            return
-        log(f"grade: preparing build slot {self.index} in {self.path}")
-        shutil.rmtree(self.path, ignore_errors=True)
-        self.path.mkdir(parents=True)
-        os.chmod(self.path, 0o700)
-        reference = self.cache.reference
-        for stage in reference.stages:
-            unit = reference.impl_source(stage)
-            for root in [self.overlay_root(stage)] + ([self.unit_root(stage)] if unit else []):
-                for rel in reference.include_files:
-                    destination = root / rel
-                    destination.parent.mkdir(parents=True, exist_ok=True)
-                    shutil.copy2(reference.root / rel, destination)
-            if unit:
-                (self.overlay_root(stage) / "impl.cpp").write_text(unit, encoding="utf-8")
-            self.write_overlay(stage, *reference.stub_state(stage))
-        if shutil.which("ninja") is None:
-            raise GradeError("expected ninja on PATH, found none; install ninja-build")
-        true = shutil.which("true") or "/bin/true"
-        configure = ["cmake", "-S", str(self.cache.tree), "-B", str(self.build_dir), "-G", "Ninja",
-                     "-DCMAKE_BUILD_TYPE=Release", "-DRT_WERROR=OFF", "-DRT_BUILD_STAGES=OFF",
-                     "-DRT_INSTALL=OFF", "-DRT_BUILD_BENCH=OFF", "-DRT_HEADER_CHECK=OFF",
-                     f"-DCMAKE_PROJECT_rt_INCLUDE={self.cache.root / 'grader.cmake'}",
-                     f"-DRT_GRADER_OVERLAYS={self.overlays}",
-                     # the suites' cases are listed by the grader, never by running a program
-                     # while building (doctest_discover_tests runs it through this "emulator")
-                     f"-DCMAKE_CROSSCOMPILING_EMULATOR={true}"]
-        if self.cache.hidden is not None:
-            configure.append(f"-DRT_HIDDEN_TESTS_DIR={self.cache.hidden}")
-        code, out = run(configure, timeout=timeout)
-        if code != 0:
-            raise GradeError("the reference does not configure:\n" + "\n".join(out.splitlines()[-30:]))
-        code, out = run(["ninja", "-C", str(self.build_dir), "-j", str(jobs), "rt_test_main"], timeout=timeout)
-        if code != 0:
-            raise GradeError("the reference's doctest runner does not build:\n" + "\n".join(out.splitlines()[-30:]))
-        write_atomically(ready, (self.cache.key + "\n").encode(), 0o600)
-
-    def write_overlay(self, stage: int, tests: Dict[str, Composed], unit: Dict[str, Composed]) -> int:
-        """Writes the files whose text differs from what the overlay holds (the others keep
-        their times, so what includes only them is not rebuilt); returns how many."""
-        written = 0
-        roots = [(self.overlay_root(stage), tests)]
-        if (self.overlay_root(stage) / "impl.cpp").is_file():
-            roots.append((self.unit_root(stage), unit))
-        for root, files in roots:
-            for rel, composed in files.items():
-                path = root / rel
-                data = composed.text.encode("utf-8")
-                try:
-                    if path.read_bytes() == data:
-                        continue
-                except OSError:
-                    pass
-                write_atomically(path, data, 0o600)
-                written += 1
-        return written
-
-    def program(self, target: Target) -> Path:
-        return self.build_dir / "tests" / target.name
-
-    def build(self, targets: Sequence[Target], jobs: int, timeout: float,
-              preexec=None) -> Dict[str, str]:
-        """Builds the targets, going on after a failure; returns each target's compiler
-        output when it failed ("" when it built)."""
-        if not targets:
-            return {}
-        names = [t.name for t in targets]
-        code, out = run(["ninja", "-C", str(self.build_dir), "-k", "0", "-j", str(jobs), *names],
-                        timeout=max(timeout, 1), preexec=preexec)
-        failed: Dict[str, str] = {}
-        block_target, block = None, []
-
-        def close_block() -> None:
-            if block_target is not None and block_target not in failed:
-                failed[block_target] = "\n".join(block)
-
-        owner_re = r"\b(test_[A-Za-z0-9_]+?|rt_grader_impl_stage[0-9]+)(?:\.dir/|$|\s)"
-        for line in out.splitlines():
-            m = re.match(r"^FAILED: (.*)$", line)
-            if m:
-                close_block()
-                owner = re.search(owner_re, m.group(1))
-                block_target, block = (owner.group(1) if owner else None), []
-                continue
-            if re.match(r"^\[\d+/\d+\] |^ninja: ", line):
-                close_block()
-                block_target, block = None, []
-                continue
-            if block_target is not None:
-                block.append(line)
-        close_block()
-        if code == -1:
-            stopped = "the build was stopped: the time budget ran out"
-            for name in names:
-                failed.setdefault(name, stopped)
-        # whatever Ninja would still do is not built, whatever the log said
-        code, dry = run(["ninja", "-C", str(self.build_dir), "-n", "-k", "0", *names], timeout=60)
-        pending = set(re.findall(owner_re, dry, re.MULTILINE))
-        for name in names:
-            if name in pending and name not in failed:
-                failed[name] = out[-4000:] or "the build did not finish"
-        # a stage's unit that does not compile is that stage's suites' error
-        for name in names:
-            m = re.match(r"test_(?:hidden_)?stage([0-9]{2})_", name)
-            unit = f"rt_grader_impl_stage{m.group(1)}" if m else ""
-            if unit in failed:
-                failed[name] = failed[unit]
-        return {name: failed.get(name, "") for name in names}
+    def write_server(self, stage: int, files: Dict[str, Composed], table: str, uid: Optional[int],
+                     gid: Optional[int]) -> Path:
+        """The sources of stage `stage`'s server; returns its folder."""
+        root = self.server_dir(stage)
+        root.mkdir(parents=True, exist_ok=True)
+        for rel in self.cache.reference.include_files:
+            destination = root / rel
+            destination.parent.mkdir(parents=True, exist_ok=True)
+            if rel in files:
+                destination.write_text(files[rel].text, encoding="utf-8")
+            else:
+                shutil.copyfile(self.cache.reference.root / rel, destination)
+        (root / "judge_table.hpp").write_text(table, encoding="utf-8")
+        for dirpath, dirnames, filenames in os.walk(root):
+            os.chmod(dirpath, 0o755)
+            if uid is not None:
+                os.chown(dirpath, uid, gid)
+            for name in filenames:
+                os.chmod(os.path.join(dirpath, name), 0o644)
+        return root

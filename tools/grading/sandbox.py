@@ -1,10 +1,12 @@
-"""Running a submission's test cases: each in a process of its own, with a time limit and
-resource limits, and, when the grader runs as root, as an unprivileged user that cannot
-read the grader's sources (the reference solution among them).
+"""Running a submission's test cases: each in a judge of its own (tools/grading/judge/), with
+a time limit, and the student's code in the judge's server: confined, with resource limits,
+and, when the grader runs as root, as an unprivileged user that cannot read the grader's
+files (the reference and the hidden suites among them).
 
-A case passes only when its program exits with 0 *and* doctest's own summary says that at
-least one case ran and none failed: a program that ends itself early (`std::exit(0)` in a
-region) does not pass.
+A case passes only on the judge's verdict (RT_JUDGE_VERDICT_FD, a file the grader opened):
+the case passed, none of its assertions failed, it made at least the assertions the
+reference's run of it makes, and the judge exited with 0. Nothing the judge prints, and
+nothing the student's code does, is read for it.
 """
 
 from __future__ import annotations
@@ -59,7 +61,7 @@ class TestUser:
             env["PATH"] = os.environ.get("PATH", env["PATH"])
         return env
 
-    def limits(self, memory_mb: int):
+    def limits(self, memory_mb: int, cpu_seconds: int = 0):
         dedicated = self.dedicated
 
         def apply() -> None:
@@ -68,6 +70,8 @@ class TestUser:
                 if memory_mb > 0:
                     limit = memory_mb * 1024 * 1024
                     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+                if cpu_seconds > 0:
+                    resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds))
                 resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
                 resource.setrlimit(resource.RLIMIT_FSIZE, (MAX_FILE_BYTES, MAX_FILE_BYTES))
                 if dedicated:  # counts the test user's processes and threads
@@ -111,6 +115,17 @@ class TestUser:
             time.sleep(0.05)
         return ended
 
+    def first_readable(self, paths: Sequence[Path], env: Dict[str, str]) -> Optional[Path]:
+        """The first of `paths` the user can read, or None (always None when the tests run
+        as the grader's own user: it reads everything the grader does)."""
+        if not self.dedicated:
+            return None
+        for path in paths:
+            code, _ = run(self.command(["/bin/sh", "-c", 'test -r "$1"', "probe", str(path)]), timeout=30, env=env)
+            if code == 0:
+                return path
+        return None
+
     def can_reach(self, paths: Sequence[Tuple[Path, str]], env: Dict[str, str]) -> Optional[Path]:
         """The first of `paths` ((path, 'x' to run or enter it, 'r' to read it)) the user
         cannot use, or None."""
@@ -123,6 +138,34 @@ class TestUser:
             if code != 0:
                 return path
         return None
+
+
+# Slot k > 0 of a batch runs as uid SLOT_UIDS + k (and that gid), a user of its own that
+# no other process has: so a submission's processes cannot signal, trace or read those of
+# another, and all of a slot's processes are ended after each suite. The names are not in
+# /etc/passwd; the kernel needs none.
+SLOT_UIDS = 3_000_000_000
+
+
+def slot_user(user: TestUser, index: int) -> TestUser:
+    """The user slot `index` runs as: the test user itself for slot 0, else a uid of its own
+    (only when the grader is root: the grader's own user otherwise)."""
+    if not user.dedicated or index == 0:
+        return user
+    uid = SLOT_UIDS + index
+    try:
+        pwd.getpwuid(uid)
+        raise GradeError(f"expected uid {uid} to be unused (the grader's slot {index} runs as it), found "
+                         f"a user with it; grade with fewer --jobs")
+    except KeyError:
+        pass
+    prefix = list(user.prefix)
+    if prefix and prefix[0].endswith("setpriv"):
+        prefix = [prefix[0], f"--reuid={uid}", f"--regid={uid}", "--clear-groups", "--no-new-privs", "--"]
+    else:
+        raise GradeError("expected setpriv (util-linux) to run a batch's slots as users of their own, found none; "
+                         "install util-linux or grade with --jobs 1")
+    return TestUser(f"{user.name}+{index}", uid, uid, prefix, dedicated=True)
 
 
 def choose_user(requested: Optional[str]) -> TestUser:
@@ -180,6 +223,33 @@ def install_program(source: Path, bin_dir: Path, user: TestUser) -> Path:
     os.chmod(tmp, 0o711 if user.dedicated else 0o755)
     os.replace(tmp, destination)
     return destination
+
+
+def reap_all(user: TestUser) -> int:
+    """Ends every process of a slot's own user, whatever it carries (a slot's uid is its
+    alone): none outlives its suite. Returns how many."""
+    if not user.dedicated or not os.path.isdir("/proc"):
+        return 0
+    ended = 0
+    for _ in range(5):
+        found = 0
+        for entry in os.listdir("/proc"):
+            if not entry.isdigit():
+                continue
+            try:
+                with open(f"/proc/{entry}/status", "rb") as f:
+                    uids = next((line.split()[1:5] for line in f if line.startswith(b"Uid:")), [])
+                if str(user.uid).encode() not in uids:
+                    continue
+                os.kill(int(entry), signal.SIGKILL)
+                found += 1
+            except (OSError, ValueError):
+                continue
+        ended += found
+        if not found:
+            break
+        time.sleep(0.05)
+    return ended
 
 
 def case_filter(name: str) -> str:
@@ -266,3 +336,76 @@ def list_cases(program: Path, source: str, user: TestUser, env: Dict[str, str], 
             return [], (f"expected {expected} distinct cases, as in its source, found {len(names)} "
                         f"listed by its program")
     return names, ""
+
+
+@dataclass
+class Verdict:
+    """What the judge's listener wrote for one case."""
+    passed: bool = False
+    assertions: int = 0
+    failed: int = 0
+    complete: bool = False      # the run's last line came
+
+
+def _read_verdict(f) -> Optional[Verdict]:
+    f.seek(0)
+    lines = f.read(4096).decode("ascii", "replace").splitlines()
+    cases = [l.split("\t") for l in lines if l.startswith("case\t")]
+    ends = [l.split("\t") for l in lines if l.startswith("end\t")]
+    if len(cases) != 1:
+        return None
+    try:
+        v = Verdict(cases[0][1] == "1", int(cases[0][2]), int(cases[0][3]))
+        v.complete = len(ends) == 1 and ends[0][1:3] == ["1", "0"]
+    except (IndexError, ValueError):
+        return None
+    return v
+
+
+def run_judged(judge: Path, case: str, server: Path, cwd: Path, timeout: float, memory_mb: int,
+               user: TestUser, expected_assertions: int) -> Tuple[str, str, float, Optional[Verdict]]:
+    """Runs one case in its judge, whose calls into the student's code go to `server`
+    (started by the judge, confined, as `user`); returns (status, output, seconds,
+    verdict) with status passed, failed, crashed or timeout."""
+    t0 = time.monotonic()
+    env = {"PATH": "/usr/bin:/bin", "HOME": str(cwd), "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8",
+           "RT_JUDGE_SERVER": str(server), "RT_JUDGE_SECONDS": str(max(1, int(timeout))),
+           "RT_JUDGE_MEMORY_MB": str(memory_mb)}
+    if user.dedicated:
+        env["RT_JUDGE_UID"], env["RT_JUDGE_GID"] = str(user.uid), str(user.gid)
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as verdict_file:
+        fd = verdict_file.fileno()
+        env["RT_JUDGE_VERDICT_FD"] = str(fd)
+        try:
+            p = subprocess.Popen([str(judge), f"--test-case={case_filter(case)}", "--no-version"], cwd=str(cwd),
+                                 stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                 start_new_session=True, env=env, pass_fds=(fd,))
+        except OSError as e:
+            return "crashed", f"could not start the judge: {e}", 0.0, None
+        try:
+            p.wait(timeout=max(timeout, 0.1))
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            timed_out = True
+        kill_group(p)          # the judge's server too: it is in the judge's group
+        p.wait()
+        text = _read_output(out)
+        verdict = _read_verdict(verdict_file)
+    seconds = time.monotonic() - t0
+    if timed_out:
+        return "timeout", text + f"\n(stopped: still running after {timeout:.0f} s)", seconds, verdict
+    if p.returncode < 0:
+        try:
+            name = signal.Signals(-p.returncode).name
+        except ValueError:
+            name = f"signal {-p.returncode}"
+        return "crashed", text + (f"\n(the test itself stopped, {name}: a value your code returned put an index "
+                                  f"out of range, or the like)"), seconds, verdict
+    if verdict is None or not verdict.complete:
+        return "failed", text + "\n(the judge gave no verdict for this case)", seconds, verdict
+    if p.returncode == 0 and verdict.passed and verdict.failed == 0:
+        if verdict.assertions < expected_assertions:
+            return "failed", text + (f"\n(the case made {verdict.assertions} of the {expected_assertions} checks "
+                                     f"it makes with a correct answer)"), seconds, verdict
+        return "passed", text, seconds, verdict
+    return "failed", text, seconds, verdict

@@ -16,8 +16,9 @@ VISIBILITIES = ("hidden", "after_due_date", "after_published", "visible")
 
 @dataclass
 class Weights:
-    stage_timeout: float = 120
-    case_timeout: float = 60
+    stage_timeout: float = 120        # the run time of a stage's cases, together
+    case_timeout: float = 60          # of one case
+    compile_timeout: float = 120      # of the build of a stage's server
     hidden_visibility: str = "after_published"
     default_visible: float = 10
     default_hidden: float = 0
@@ -52,7 +53,8 @@ def load_weights(path: Path) -> Weights:
     if not isinstance(data, dict):
         raise GradeError(f"{where}:1:1: expected a JSON object, found {type(data).__name__}")
     w = Weights()
-    known = {"stage_timeout_seconds", "case_timeout_seconds", "hidden_visibility", "default", "stages"}
+    known = {"stage_timeout_seconds", "case_timeout_seconds", "compile_timeout_seconds", "hidden_visibility",
+             "default", "stages"}
     for key in data:
         if key not in known and not key.startswith("//"):
             raise fail(key, "one of " + ", ".join(sorted(known)) + " (or a \"//\" comment)", key)
@@ -60,6 +62,8 @@ def load_weights(path: Path) -> Weights:
         w.stage_timeout = number("stage_timeout_seconds", data["stage_timeout_seconds"])
     if "case_timeout_seconds" in data:
         w.case_timeout = number("case_timeout_seconds", data["case_timeout_seconds"])
+    if "compile_timeout_seconds" in data:
+        w.compile_timeout = number("compile_timeout_seconds", data["compile_timeout_seconds"])
     if "hidden_visibility" in data:
         if data["hidden_visibility"] not in VISIBILITIES:
             raise fail("hidden_visibility", "one of " + ", ".join(VISIBILITIES), data["hidden_visibility"])

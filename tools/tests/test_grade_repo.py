@@ -21,7 +21,7 @@ TOOLS = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(TOOLS))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import grade  # noqa: E402
-from grade_fixture import have_build_tools, run_as_arguments, temporary_folder  # noqa: E402
+from grade_fixture import have_build_tools, private_copy, run_as_arguments, temporary_folder  # noqa: E402
 
 REFERENCE = Path(os.environ.get("RT_GRADE_TEST_REFERENCE", str(TOOLS.parent))).resolve()
 LIMIT_SECONDS = 20.0       # a correct submission on two cores
@@ -37,7 +37,8 @@ class Repository(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tmp = temporary_folder("repo")
-        cls.common = ["--reference", str(REFERENCE), "--hidden", str(REFERENCE / "tests" / "hidden"),
+        reference = private_copy(REFERENCE, cls.tmp / "reference")
+        cls.common = ["--reference", str(reference), "--hidden", str(reference / "tests" / "hidden"),
                       "--cache", str(cls.tmp / "cache"), "--work", str(cls.tmp / "work")] + run_as_arguments()
         assert grade.main(["--calibrate"] + cls.common) == 0, "the cache could not be made"
         # a correct submission, right after calibrating: every stage's code is new to the cache
