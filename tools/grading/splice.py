@@ -8,11 +8,13 @@ student's copy of it, takes the lines between each pair of markers
     // RT_EXERCISE_END
 
 and matches them to the reference's region by file, stage and title. Every other line of
-the submission is ignored. A region's lines must stay inside the function body: no
-preprocessor directive (which would change code outside it, or read a file), no brace
-that closes the function, no string or comment left open (which would swallow the code
-after the region), no `asm` (which can read a file while compiling). Such a region is
-refused, and its stage scores zero with a message naming the line.
+the submission is ignored. A region's lines must stay inside the function body and name
+only what an exercise needs: check_body lexes them as the compiler does (lexer.py: no
+preprocessor directive, line splice, trigraph, control byte, brace that closes the
+function, string or comment left open) and checks every name against the allow-list
+(region_check.py, names.py: no process control, I/O, environment, `asm`, vendor attribute
+or pointer cast). Such a region is refused, and its stage scores zero with a message
+naming the line.
 
 The grader then composes the headers each stage's tests compile against (an *overlay*):
 the reference's text with, region by region, the reference's body, the kit's not-done
@@ -30,22 +32,7 @@ from typing import Dict, Iterable, List, Optional, Sequence, Set, Tuple
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 import make_kit  # noqa: E402  (tools/make_kit.py: the markers and the kit's bodies)
-
-# Identifiers a region may not use: inline assembly reads files at compile time
-# (.incbin) and defines symbols; _Pragma is a directive in operator form; a compiler
-# attribute can place a function in the program's start-up list (section .init_array)
-# and run it before the tests begin.
-FORBIDDEN_WORDS = {"asm": "inline assembly", "__asm": "inline assembly", "__asm__": "inline assembly",
-                   "_Pragma": "a pragma", "__pragma": "a pragma",
-                   "__attribute__": "compiler attribute", "__attribute": "compiler attribute",
-                   "__declspec": "compiler attribute"}
-# [[gnu::section(...)]], [[using gnu: ...]]: the same attributes in the standard's spelling
-# (the unqualified ones, [[maybe_unused]] and the like, are accepted)
-SCOPED_ATTRIBUTE_RE = re.compile(r"(\[|<:)\s*(\[|<:)\s*(using\b|[A-Za-z_]\w*\s*::)")
-# Digraphs: the alternative spellings of brackets and of '#'.
-DIGRAPHS = {"<%": "{", "%>": "}", "<:": "[", ":>": "]"}
-STRING_PREFIXES = ("u8R", "uR", "UR", "LR", "R", "u8", "u", "U", "L")
-
+from . import lexer, region_check  # noqa: E402
 
 @dataclass
 class StudentRegion:
@@ -82,13 +69,29 @@ def _marker(line: str) -> Optional[Tuple[str, str]]:
     return None
 
 
+def _shown(text: str) -> str:
+    """`text` fit for a report: a control character as \\xNN or \\uNNNN, a byte that is not
+    UTF-8 (a surrogate of errors="surrogateescape") as \\xNN."""
+    def one(c: str) -> str:
+        code = ord(c)
+        if 0xDC80 <= code <= 0xDCFF:
+            return f"\\x{code - 0xDC00:02x}"
+        if c.isprintable() and not 0xD800 <= code <= 0xDFFF:
+            return c
+        return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+    return "".join(one(c) for c in text)
+
+
 def region_key(inside: str) -> Optional[Tuple[int, str]]:
     m = make_kit.BEGIN_INSIDE_RE.match(inside)
     return (int(m.group("stage")), m.group("title")) if m else None
 
 
 def normalise(text: str) -> str:
-    """The text with Windows line ends and a byte-order mark removed."""
+    """The text with Windows line ends and a byte-order mark removed. A lone CR ends a line
+    too, as it does for GCC and Clang, so that the grader's line numbers are the
+    compiler's; the overlay is written from these lines with LF alone, so what the region
+    scanner lexed is what the compiler reads."""
     if text.startswith("\ufeff"):
         text = text[1:]
     return text.replace("\r\n", "\n").replace("\r", "\n")
@@ -127,7 +130,7 @@ def read_student_file(rel: str, text: str) -> StudentFile:
         key = region_key(inside)
         if key is None:
             out.notes.append(f"{rel}:{begin_line}:{begin_column}: expected RT_EXERCISE_BEGIN(stageNN: title) "
-                             f"as the kit has it, found \"{inside}\"; this region is ignored")
+                             f"as the kit has it, found \"{_shown(inside)}\"; this region is ignored")
             continue
         body = lines[begin_line:number - 1]
         region = StudentRegion(key[0], key[1], begin_line, number, body)
@@ -155,148 +158,14 @@ def read_student_file(rel: str, text: str) -> StudentFile:
 
 def check_body(rel: str, first_line: int, body: Sequence[str]) -> str:
     """'' when the lines can stand for a function's body, else the first problem as one
-    line `file:line:col: expected ..., found ...; hint`."""
-    text = "\n".join(body)
-    n = len(text)
-    i = 0
-    line, line_start = first_line, 0
-    brackets: List[Tuple[str, int, int]] = []     # (opening bracket, line, column)
-    pairs = {"}": "{", ")": "(", "]": "["}
-
-    def where(at: int) -> str:
-        return f"{rel}:{line}:{at - line_start + 1}"
-
-    def fail(at: int, expected: str, found: str, hint: str) -> str:
-        return f"{where(at)}: expected {expected}, found {found}; {hint}"
-
-    directive_hint = ("the grader takes only the lines between your markers, so a directive there "
-                      "would change code outside your function; use the header's own #include lines")
-    while i < n:
-        ch = text[i]
-        if ch == "\n":
-            line += 1
-            i += 1
-            line_start = i
-            continue
-        if ch in " \t\f\v":
-            i += 1
-            continue
-        if ch == "\\":
-            rest = text[i + 1:text.find("\n", i) if "\n" in text[i:] else n]
-            if rest.strip() == "":
-                return fail(i, "no backslash at the end of a line", "one",
-                            "it joins the next line to this one (a line splice); remove it")
-            i += 1
-            continue
-        if text.startswith("//", i):
-            end = text.find("\n", i)
-            end = n if end < 0 else end
-            if text[i:end].rstrip().endswith("\\"):
-                return fail(i, "a comment that ends with its line", "a backslash at its end",
-                            "it continues the comment onto the next line; remove the backslash")
-            i = end
-            continue
-        if text.startswith("/*", i):
-            close = text.find("*/", i + 2)
-            if close < 0:
-                return fail(i, "*/ closing this comment inside the region", "the end of the region",
-                            "close the comment before RT_EXERCISE_END")
-            line += text.count("\n", i, close)
-            if "\n" in text[i:close]:
-                line_start = text.rfind("\n", i, close) + 1
-            i = close + 2
-            continue
-        if ch == "#" or text.startswith("%:", i) or text.startswith("??=", i):
-            m = re.match(r"(#|%:|\?\?=)\s*(\w*)", text[i:])
-            word = m.group(2) if m else ""
-            found = f"#{word}" if word else "#"
-            return fail(i, "no preprocessor directive in an exercise region", found, directive_hint)
-        if ch.isalpha() or ch == "_" or ord(ch) > 127:
-            j = i + 1
-            while j < n and (text[j].isalnum() or text[j] == "_" or ord(text[j]) > 127):
-                j += 1
-            word = text[i:j]
-            if j < n and text[j] in "\"'" and word in STRING_PREFIXES:
-                if text[j] == '"' and word.endswith("R"):
-                    open_paren = text.find("(", j + 1)
-                    delimiter = text[j + 1:open_paren] if open_paren >= 0 else ""
-                    if open_paren < 0 or len(delimiter) > 16 or re.search(r"[\s\\()]", delimiter):
-                        return fail(i, "a raw string R\"delimiter(...)delimiter\"", "a malformed one",
-                                    "check the opening of the raw string")
-                    closing = ")" + delimiter + '"'
-                    close = text.find(closing, open_paren + 1)
-                    if close < 0:
-                        return fail(i, "the raw string closed inside the region", "the end of the region",
-                                    "close it before RT_EXERCISE_END")
-                    end = close + len(closing)
-                    line += text.count("\n", i, end)
-                    if "\n" in text[i:end]:
-                        line_start = text.rfind("\n", i, end) + 1
-                    i = end
-                    continue
-                i = j   # the literal follows: the quote is read next
-                continue
-            if word in FORBIDDEN_WORDS:
-                return fail(i, f"no {FORBIDDEN_WORDS[word]} in an exercise region", word,
-                            "write the function in C++ only")
-            if word == "doctest" or word.startswith("DOCTEST_"):
-                return fail(i, "no use of the test framework in an exercise region", word,
-                            "the library's code does not call doctest")
-            i = j
-            continue
-        if ch in "\"'":
-            j = i + 1
-            while j < n and text[j] != ch and text[j] != "\n":
-                j += 2 if text[j] == "\\" else 1
-            if j >= n or text[j] != ch:
-                what = "string" if ch == '"' else "character literal"
-                return fail(i, f"the {what} closed on its line", "the end of the line",
-                            f"add the closing {ch}")
-            i = j + 1
-            continue
-        if ch.isdigit() or (ch == "." and i + 1 < n and text[i + 1].isdigit()):
-            j = i + 1
-            while j < n:
-                c = text[j]
-                if c in "eEpP" and j + 1 < n and text[j + 1] in "+-":
-                    j += 2
-                elif c.isalnum() or c in "_.":
-                    j += 1
-                elif c == "'" and j + 1 < n and (text[j + 1].isalnum() or text[j + 1] == "_"):
-                    j += 2   # a digit separator, 1'000
-                else:
-                    break
-            i = j
-            continue
-        two = text[i:i + 2]
-        if two in DIGRAPHS and not (two == "<:" and text.startswith("<::", i) and
-                                    not text.startswith("<:::", i) and not text.startswith("<::>", i)):
-            ch = DIGRAPHS[two]
-            step = 2
-        else:
-            step = 1
-        attribute = SCOPED_ATTRIBUTE_RE.match(text, i) if ch == "[" else None
-        if attribute:
-            return fail(i, "no attribute with a vendor's prefix in an exercise region",
-                        re.sub(r"\s", "", attribute.group(0)),
-                        "write the function in C++ only; [[maybe_unused]] and the like are fine")
-        if ch in "{([":
-            brackets.append((ch, line, i - line_start + 1))
-        elif ch in "})]":
-            if not brackets:
-                return fail(i, "code that stays inside the function body", f"an unmatched '{ch}'",
-                            "the region is the function's whole body: keep its braces balanced")
-            opening = brackets.pop()
-            if opening[0] != pairs[ch]:
-                return fail(i, f"a bracket closing the '{opening[0]}' of line {opening[1]}", f"'{ch}'",
-                            "check the brackets")
-        i += step
-    if brackets:
-        opening, at_line, column = brackets[-1]
-        closing = {"{": "}", "(": ")", "[": "]"}[opening]
-        return (f"{rel}:{at_line}:{column}: expected '{closing}' for this '{opening}' before RT_EXERCISE_END, "
-                f"found the end of the region; the region is the function's whole body: keep its brackets "
-                f"balanced")
+    line `file:line:col: expected ..., found ...; hint`: the lines lexed as the compiler
+    reads them (lexer.py), their brackets paired, and every name they write on the
+    allow-list (region_check.py, names.py)."""
+    try:
+        toks = lexer.tokens("\n".join(body), first_line)
+        region_check.check(rel, toks, lexer.match_brackets(toks))
+    except lexer.Refused as refused:
+        return refused.refusal.message(rel)
     return ""
 
 
@@ -318,19 +187,14 @@ ERROR_INCLUDE_RE = re.compile(r'^\s*#\s*include\s*[<"]([\w./]*/)?(rt/)?error\.hp
 
 def compose(rel: str, reference_text: str, regions: Sequence[make_kit.Region],
             choice: Dict[int, object], doc_of: Dict[int, Optional[str]],
-            student: Optional[StudentFile], declare: Iterable[int] = (),
-            keep: Optional[Dict[int, str]] = None) -> Composed:
+            student: Optional[StudentFile]) -> Composed:
     """The reference's `rel` with each region's body chosen by `choice[index into regions]`:
     "reference", "stub" (the kit's not-done body) or a StudentRegion. Lines outside the
-    regions are the reference's. The functions of the regions in `declare` become bare
-    declarations (their definitions are compiled elsewhere: split_form); after the function
-    of each region in `keep`, its line is added."""
+    regions are the reference's."""
     ref_lines = reference_text.split("\n")
     out: List[Tuple[str, int]] = []
     exact_lines: List[int] = []     # indexes into out
     order = sorted(range(len(regions)), key=lambda k: regions[k].begin_line)
-    declare = set(declare)
-    keep = keep or {}
     at = 0     # next reference line (0-based)
     stub_used = False
     segment = 0
@@ -348,24 +212,6 @@ def compose(rel: str, reference_text: str, regions: Sequence[make_kit.Region],
         r = regions[k]
         mine = student.regions.get((r.stage, r.title)) if student is not None else None
         stand_in = mine.begin_line if mine is not None else 0
-        span = function_span(ref_lines, r) if (k in declare or k in keep) else None
-        if k in declare and span is not None:
-            open_idx, open_col, close_idx, close_col = span
-            copy(open_idx)
-            head = ref_lines[open_idx][:open_col].rstrip()
-            if head.strip():
-                out.append((head + ";", stand_in))
-            elif out and "//" not in out[-1][0] and "/*" not in out[-1][0]:
-                out[-1] = (out[-1][0].rstrip() + ";", out[-1][1])   # the brace alone on its line
-                out.append(("", stand_in))                            # keeps the line count
-            else:
-                out.append((";", stand_in))
-            tail = ref_lines[close_idx][close_col + 1:]
-            if tail.strip():
-                out.append((tail, stand_in))
-            at = close_idx + 1
-            segment += 1
-            continue
         copy(r.begin_line)    # up to the BEGIN marker, inclusive
         segment += 1
         chosen = choice.get(k, "reference")
@@ -381,9 +227,6 @@ def compose(rel: str, reference_text: str, regions: Sequence[make_kit.Region],
                 body = ref_lines[r.begin_line:r.end_line - 1]
             out.extend((b, stand_in) for b in body)
         at = r.end_line - 1     # the END marker comes next
-        if k in keep and span is not None:
-            copy(span[2] + 1)   # through the function's closing brace
-            out.append((keep[k], stand_in))
     copy(len(ref_lines))
     text = "\n".join(l for l, _ in out)
     # the kit's bodies (ours, or the student's unchanged ones) throw rt::exercise_not_done
@@ -422,54 +265,6 @@ def function_span(lines: List[str], region: make_kit.Region) -> Optional[Tuple[i
     if open_at is None or close_at is None:
         return None
     return open_at + close_at
-
-
-def split_form(lines: List[str], region: make_kit.Region, key: str) -> Optional[str]:
-    """When the region's function can be compiled apart from the tests that call it (a
-    non-template `inline` function at namespace level, with a return type written out),
-    the line that, placed after it, makes a unit emit it: a pointer to it, of its exact
-    type; None otherwise (templates, `auto`, members, `static`)."""
-    span = function_span(lines, region)
-    if span is None:
-        return None
-    open_idx, open_col = span[0], span[1]
-    parts = [_code_part(lines[open_idx])[:open_col]]
-    idx = open_idx - 1
-    while idx >= 0:
-        code = _code_part(lines[idx]).rstrip()
-        if not code.strip() or code.rstrip().endswith((";", "}", "{")) or lines[idx].lstrip().startswith("#"):
-            break
-        parts.insert(0, code)
-        idx -= 1
-    first = idx + 1
-    if first > open_idx or lines[first][:1].isspace():
-        return None        # indented: a member function, or not a plain declaration
-    signature = " ".join(p.strip() for p in parts).strip()
-    signature = re.sub(r"\[\[.*?\]\]", " ", signature).strip()
-    if not re.match(r"inline\b", signature) or re.search(r"\b(template|static|auto|decltype|constexpr|"
-                                                          r"consteval|operator|friend|virtual)\b", signature):
-        return None
-    group = make_kit._parameter_group(signature)
-    if group is None:
-        return None
-    head = signature[:group[0]].rstrip()
-    m = re.search(r"([A-Za-z_]\w*)$", head)
-    if not m or m.group(1) != region.function:
-        return None
-    return_type = re.sub(r"^inline\s+", "", head[:m.start()]).strip()
-    if not return_type or "::" in head[m.start() - 2:m.start()]:
-        return None
-    inside = signature[group[0] + 1:group[1] - 1]
-    parameters = []
-    for part in make_kit._split_top_level(inside, ","):
-        part = re.split(r"(?<![=!<>])=(?!=)", part, maxsplit=1)[0].strip()   # no default argument
-        if part:
-            parameters.append(part)
-    tail = signature[group[1]:].strip()
-    if tail:
-        return None        # noexcept, a trailing return type, requires ...
-    return (f"[[gnu::used]] static {return_type} (*const rt_grader_keep_{key})({', '.join(parameters)}) = "
-            f"&{region.function}; // tools/grade.py: this unit emits {region.function}")
 
 
 def _segments(student: StudentFile) -> List[Tuple[int, int]]:
