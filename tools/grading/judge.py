@@ -17,7 +17,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, List, Optional
 
+import sys
+
+from .common import GradeError
 from .splice import Composed, StudentRegion, compose, function_span
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+import make_kit  # noqa: E402  (tools/make_kit.py: the kit's bodies)
 
 JUDGE_SOURCES = Path(__file__).resolve().parent / "judge"
 
@@ -40,11 +46,14 @@ class Exercise:
         args = [STAND_INS.get(t, t) if served else t for t in self.template]
         return f"&{name}<{', '.join(args)}>"
 
+    def call(self) -> str:
+        """The statement that calls the function in the other program."""
+        arguments = "".join(f", {n}" for n, _ in self.region.parameters)
+        return f"return ::rt::judge::call<{self.id}>({self.pointer(False)}{arguments});"
+
     def body(self) -> List[str]:
         """The region's body as a call into the other program."""
-        names = [n for n, _ in self.region.parameters]
-        arguments = "".join(f", {n}" for n in names)
-        return [f"{self.region.indent}return ::rt::judge::call<{self.id}>({self.pointer(False)}{arguments});"]
+        return [self.region.indent + self.call()]
 
 
 def template_parameters(lines: List[str], region) -> List[str]:
@@ -68,9 +77,17 @@ def template_parameters(lines: List[str], region) -> List[str]:
 
 
 def exercises(reference) -> List[Exercise]:
+    """Every region as an exercise the judge can call. A template's calls cross from one
+    program to the other, so each of its parameters must have a stand-in the two agree on."""
     out = []
     for index, r in enumerate(reference.regions):
         template = template_parameters(reference.text(r.path).split("\n"), r) if r.path.startswith("include/") else []
+        unknown = [t for t in template if t not in STAND_INS]
+        if unknown:
+            raise GradeError(f"{r.path}:{r.begin_line}: expected an exercise that is a function, or a template over "
+                             f"{' or '.join(sorted(STAND_INS))} (the judge serves those by stand-ins), found a "
+                             f"template over {', '.join(unknown)}; make the exercise a function of concrete types, "
+                             f"or add a stand-in to STAND_INS in tools/grading/judge.py")
         out.append(Exercise(index, r, template))
     return out
 
@@ -92,10 +109,11 @@ def judge_overlay(reference, stage: int) -> Dict[str, Composed]:
     return files
 
 
-def server_overlay(reference, stage: int, body_of, students: Dict[str, object]) -> Dict[str, Composed]:
+def server_overlay(reference, stage: int, body_of, students: Dict[str, object],
+                   cumulative: bool = False) -> Dict[str, Composed]:
     """The headers stage `stage`'s server compiles against: body_of(region) for the stage's
-    own regions (the student's region, or "stub"), calls into the judge before it, the kit's
-    stubs after it."""
+    own regions (the student's region, or "stub"), calls into the judge before it (or, when
+    `cumulative`, body_of as well), the kit's stubs after it."""
     by_region = {id(e.region): e for e in exercises(reference)}
     files = {}
     for rel, regions in reference.by_file.items():
@@ -106,11 +124,64 @@ def server_overlay(reference, stage: int, body_of, students: Dict[str, object]) 
             if r.stage == stage:
                 choice[k] = body_of(r)
             elif r.stage < stage:
-                choice[k] = _remote(by_region[id(r)])
+                choice[k] = body_of(r) if cumulative else _remote(by_region[id(r)])
             else:
                 choice[k] = "stub"
         files[rel] = compose(rel, reference.text(rel), regions, choice, reference.doc_of, students.get(rel))
     return files
+
+
+def group_overlay(reference, stages: List[int], body_of, students: Dict[str, object],
+                  cumulative: bool = False) -> Dict[str, Composed]:
+    """The headers of one server for several stages (`stages`, ascending): the server is
+    told the stage it serves (serving_stage(), from the judge), and each region of a stage
+    S from the first to the last of them starts with one line that makes it what S's own
+    server would have: the student's body when S is served, a call back into the judge when
+    a later stage is (the reference's answer; the student's body when `cumulative`), the
+    kit's not-done when an earlier one is. Regions before the first stage are calls into
+    the judge (or the student's, when `cumulative`), after the last the kit's stubs. One
+    build instead of one per stage: the headers are parsed once."""
+    by_region = {id(e.region): e for e in exercises(reference)}
+    first, last = stages[0], stages[-1]
+    files = {}
+    for rel, regions in reference.by_file.items():
+        if not rel.startswith("include/"):
+            continue
+        choice: Dict[int, object] = {}
+        for k, r in enumerate(regions):
+            if r.stage > last:
+                choice[k] = "stub"
+            elif r.stage < first:
+                choice[k] = body_of(r) if cumulative else _remote(by_region[id(r)])
+            else:
+                choice[k] = _dispatched(by_region[id(r)], body_of(r), reference.doc_of.get(r.stage), cumulative)
+        files[rel] = compose(rel, reference.text(rel), regions, choice, reference.doc_of, students.get(rel))
+    return files
+
+
+def _dispatched(e: Exercise, chosen: object, doc: Optional[str], cumulative: bool) -> StudentRegion:
+    """The region's body (the student's StudentRegion, or "stub") after a line that sends
+    the calls of another served stage elsewhere. The line stands for the BEGIN marker's, so
+    the student's lines keep their numbers."""
+    r = e.region
+    stage = "::rt::judge::serving_stage()"
+    not_done = f"throw ::rt::exercise_not_done({make_kit.cxx_string(make_kit.not_done_message(r, doc))});"
+    if cumulative:
+        line = f"{r.indent}if ({stage} < {r.stage}) {not_done}"
+    else:
+        line = f"{r.indent}if ({stage} != {r.stage}) {{ if ({stage} > {r.stage}) {e.call()} {not_done} }}"
+    if isinstance(chosen, StudentRegion):
+        return StudentRegion(r.stage, r.title, chosen.begin_line - 1, chosen.end_line, [line] + list(chosen.body))
+    return StudentRegion(r.stage, r.title, -1, 0, [line] + make_kit.stripped_body(r, doc))
+
+
+def group_table(reference, stages: List[int]) -> str:
+    """judge_table.hpp of a server for `stages`: the functions of every stage it holds."""
+    chosen = [e for e in exercises(reference) if stages[0] <= e.region.stage <= stages[-1]
+              and e.region.path.startswith("include/")]
+    includes = sorted({e.region.path for e in chosen})
+    return ("// Written by tools/grading/judge.py: the functions a server of stages %s runs.\n#pragma once\n"
+            % ", ".join(f"{s:02d}" for s in stages) + '#include "remote.hpp"\n' + _table(reference, chosen, includes))
 
 
 def _table(reference, chosen: List[Exercise], includes: List[str]) -> str:

@@ -345,6 +345,7 @@ class Verdict:
     assertions: int = 0
     failed: int = 0
     complete: bool = False      # the run's last line came
+    run_passed: bool = False    # and it says: 1 case passed, none failed
 
 
 def _read_verdict(f) -> Optional[Verdict]:
@@ -356,21 +357,22 @@ def _read_verdict(f) -> Optional[Verdict]:
         return None
     try:
         v = Verdict(cases[0][1] == "1", int(cases[0][2]), int(cases[0][3]))
-        v.complete = len(ends) == 1 and ends[0][1:3] == ["1", "0"]
+        v.complete = len(ends) == 1
+        v.run_passed = v.complete and ends[0][1:3] == ["1", "0"]
     except (IndexError, ValueError):
         return None
     return v
 
 
 def run_judged(judge: Path, case: str, server: Path, cwd: Path, timeout: float, memory_mb: int,
-               user: TestUser, expected_assertions: int) -> Tuple[str, str, float, Optional[Verdict]]:
+               user: TestUser, expected_assertions: int, stage: int = 0) -> Tuple[str, str, float, Optional[Verdict]]:
     """Runs one case in its judge, whose calls into the student's code go to `server`
-    (started by the judge, confined, as `user`); returns (status, output, seconds,
-    verdict) with status passed, failed, crashed or timeout."""
+    (started by the judge, confined, as `user`, told it serves `stage`); returns (status,
+    output, seconds, verdict) with status passed, failed, crashed or timeout."""
     t0 = time.monotonic()
     env = {"PATH": "/usr/bin:/bin", "HOME": str(cwd), "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8",
            "RT_JUDGE_SERVER": str(server), "RT_JUDGE_SECONDS": str(max(1, int(timeout))),
-           "RT_JUDGE_MEMORY_MB": str(memory_mb)}
+           "RT_JUDGE_MEMORY_MB": str(memory_mb), "RT_JUDGE_STAGE": str(stage)}
     if user.dedicated:
         env["RT_JUDGE_UID"], env["RT_JUDGE_GID"] = str(user.uid), str(user.gid)
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as verdict_file:
@@ -403,7 +405,7 @@ def run_judged(judge: Path, case: str, server: Path, cwd: Path, timeout: float, 
                                   f"out of range, or the like)"), seconds, verdict
     if verdict is None or not verdict.complete:
         return "failed", text + "\n(the judge gave no verdict for this case)", seconds, verdict
-    if p.returncode == 0 and verdict.passed and verdict.failed == 0:
+    if p.returncode == 0 and verdict.passed and verdict.failed == 0 and verdict.run_passed:
         if verdict.assertions < expected_assertions:
             return "failed", text + (f"\n(the case made {verdict.assertions} of the {expected_assertions} checks "
                                      f"it makes with a correct answer)"), seconds, verdict

@@ -10,6 +10,11 @@ namespace judge {
 template <unsigned ID, class R, class... P, class... A>
 R call(R (*function)(P...), A&&... arguments);
 
+/// The stage whose tests the server answers (its first argument): a server built for
+/// several stages picks each region's body by it (tools/grading/judge.py, group_overlay).
+/// Defined by server.cpp; the judge never calls it.
+int serving_stage();
+
 } // namespace judge
 } // namespace rt
 

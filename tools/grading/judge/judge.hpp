@@ -19,6 +19,7 @@
 //     RT_JUDGE_SECONDS     how long it may take to answer one frame (the case's time)
 //     RT_JUDGE_MEMORY_MB   its address space
 //     RT_JUDGE_UID/_GID    who it runs as, when the judge is root
+//     RT_JUDGE_STAGE       the stage it serves (its first argument), for a server of several
 #pragma once
 
 #include <cerrno>
@@ -81,6 +82,7 @@ private:
         const long memory_mb = environment_number("RT_JUDGE_MEMORY_MB", 0);
         const long uid = environment_number("RT_JUDGE_UID", -1);
         const long gid = environment_number("RT_JUDGE_GID", -1);
+        const std::string stage = std::to_string(environment_number("RT_JUDGE_STAGE", 0));
         const std::vector<sock_filter> program = filter_program(true);
         int calls[2], replies[2];
         if (::pipe2(calls, O_CLOEXEC) != 0 || ::pipe2(replies, O_CLOEXEC) != 0)
@@ -114,7 +116,7 @@ private:
                 ::_exit(122);
             if (!install_filter(program))
                 ::_exit(123);
-            char* const argv[] = {const_cast<char*>(server), nullptr};
+            char* const argv[] = {const_cast<char*>(server), const_cast<char*>(stage.c_str()), nullptr};
             char* const envp[] = {const_cast<char*>("LANG=C"), nullptr};
             ::execve(server, argv, envp);
             ::_exit(124);

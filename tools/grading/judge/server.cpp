@@ -18,10 +18,29 @@ rt::judge::peer& rt::judge::current_peer()
     return server;
 }
 
-int main()
+namespace {
+int& served_stage()
+{
+    static int stage = 0;
+    return stage;
+}
+} // namespace
+
+int rt::judge::serving_stage()
+{
+    return served_stage();
+}
+
+int main(int argc, char** argv)
 {
     if (!rt::judge::install_filter(rt::judge::filter_program(false)))
         return 123;
+    if (argc > 1) {
+        int stage = 0;
+        for (const char* c = argv[1]; *c >= '0' && *c <= '9' && stage < 100; ++c)
+            stage = stage * 10 + (*c - '0');
+        served_stage() = stage;
+    }
     rt::judge::peer& server = rt::judge::current_peer();
     rt_judge_table(server);
     try {
