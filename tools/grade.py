@@ -10,18 +10,21 @@ SUBMISSION is a folder or a .zip / .tar.gz / .tgz / .tar archive holding the stu
 include/rt (alone, or inside a whole repository). The grader
 1. takes only the exercise regions of the submission (the lines between the
    RT_EXERCISE_BEGIN and RT_EXERCISE_END markers, matched to the reference's by file, stage
-   and title) and splices them into the reference; every other line of the submission is
-   ignored, and a region holding a preprocessor directive (or a brace that closes its
-   function) is refused: its stage scores zero, with a message naming the line;
-2. judges each stage alone (the default): stage N's suites are built with the student's
-   regions of stage N and the reference's regions of every other stage, so a mistake in
-   one stage costs that stage only; --cumulative builds every suite with the student's
-   regions everywhere;
-3. builds each stage's suites in a tree prepared once (--cache, --calibrate: tools/grading/
-   cache.py), so a submission rebuilds only the suites of the stages it touches;
-4. runs every test case in a process of its own with time and resource limits, as an
-   unprivileged user (--run-as, default rtgrader) when the grader is root, so that no
-   submission reads the grader's files; all of it within a time budget (--budget);
+   and title); every other line of the submission is ignored. Each region is lexed as the
+   compiler reads it and may name only what an exercise needs (grading/lexer.py,
+   region_check.py, names.py): a region that names anything else is refused, its stage
+   scores zero, with a message naming the line;
+2. builds, for each stage, a server: the kit's headers with the student's regions of the
+   stage (and of the stages before it, --cumulative), compiled and run as an unprivileged
+   test user (--run-as, default rtgrader, one uid per batch slot) that cannot read the
+   reference or the hidden suites; several stages share one build when they compile;
+3. runs every test case in a judge (grading/judge/, built once per cache with the
+   reference's code, --cache, --calibrate): the judge holds the assertions and the
+   expected values, and each call into a student's function crosses a pipe to the server,
+   which runs confined by seccomp. The verdict is the judge's alone: a case passes only
+   when the judge saw every assertion the reference's run of it makes, so nothing the
+   student's process prints, or how it ends, can pass a case;
+4. gives each stage its own compile and run limits, and all of it a time budget (--budget);
 5. scores each stage: its points (weights file) times the fraction of its cases passed, for
    the visible and the hidden suites separately; and writes a table, JUnit XML and a
    Gradescope results.json (whose top-level output names only the visible suites).
@@ -41,6 +44,7 @@ import re
 import shutil
 import sys
 import tempfile
+import threading
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -54,7 +58,7 @@ from grading.cache import Cache, Reference, Slot  # noqa: E402
 from grading.common import Deadline, GradeError, SubmissionError, log, parse_stages, write_atomically  # noqa: E402
 from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, junit,  # noqa: E402,F401
                             junit_bytes, stage_points, table)
-from grading import judge  # noqa: E402
+from grading import judge, names  # noqa: E402
 from grading.common import run  # noqa: E402
 from grading.sandbox import TestUser, choose_user, reap_all, run_judged, slot_user  # noqa: E402
 from grading.splice import LineMaps, StudentFile, outside_differences, normalise, read_student_file  # noqa: E402
@@ -62,6 +66,9 @@ from grading.submission import HEADER_SUFFIXES, find_rt_folder, unpack  # noqa: 
 from grading.weights import VISIBILITIES, Weights, load_weights  # noqa: E402,F401
 
 DEFAULT_BUDGET = 600
+# A server of several stages builds in seconds; one that takes longer than this (a
+# compile-time bomb in one of them) is given up for a build of each stage alone.
+GROUP_COMPILE_SECONDS = 60
 MAX_NOTES = 12
 
 
@@ -84,8 +91,8 @@ class Context:
     @property
     def mode_line(self) -> str:
         if self.cumulative:
-            return ("Graded cumulatively: every stage's tests ran with your code of every stage, so a "
-                    "mistake in one stage can fail the stages that use it.")
+            return ("Graded cumulatively: each stage's tests ran with your code of that stage and the stages "
+                    "before it, so a mistake in one stage can fail the stages that use it.")
         return ("Each stage judged alone: stage N's tests ran with your code of stage N and the reference's "
                 "code of every other stage, so a mistake in one stage costs that stage only.")
 
@@ -158,7 +165,9 @@ def read_submission(ctx: Context, rt_folder: Path, root: Path, outcome: Outcome)
     for name in handed_in:
         rel = f"include/rt/{name}"
         try:
-            text = (rt_folder / name).read_text(encoding="utf-8", errors="replace")
+            # the exact bytes: a byte that is not UTF-8 stays one (a surrogate), for the region
+            # scanner to refuse, rather than becoming U+FFFD, which the compiler never sees
+            text = (rt_folder / name).read_bytes().decode("utf-8", errors="surrogateescape")
         except OSError:
             continue
         if rel in reference.by_file:
@@ -244,92 +253,148 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
         ensure_judges(ctx, to_build)
         log(f"grade: building the servers of stages {', '.join(f'{s:02d}' for s in to_build)}")
 
-    def build(stage: int) -> Tuple[int, str]:
-        def body_of(r, stage: int = stage) -> object:
-            mine = accepted.get((r.path, r.begin_line))
-            return mine if mine is not None else "stub"
+    def body_of(r) -> object:
+        mine = accepted.get((r.path, r.begin_line))
+        return mine if mine is not None else "stub"
 
-        files = judge.server_overlay(reference, stage, body_of, students)
-        root = slot.write_server(stage, files, judge.server_table(reference, stage), uid, gid)
+    def compile_server(name: str, files, table: str, limit: float) -> Tuple[Optional[Path], str]:
+        """(the server program, "") or (None, why it is not built)."""
+        root = slot.write_server(name, files, table, uid, gid)
         maps.roots[str(root)] = files
-        limit = min(ctx.weights.compile_timeout, deadline.left())
+        limit = min(limit, deadline.left())
         if limit <= 0:
-            return stage, f"not built: the time budget of {ctx.budget:.0f} s ran out"
+            return None, f"not built: the time budget of {ctx.budget:.0f} s ran out"
         code, out = run(user.command(cache.server_command(root, root / "server")), cwd=root, timeout=limit,
                         env=user.environment(root, uuid.uuid4().hex),
                         preexec=user.limits(max(ctx.memory_mb * 2, 2048), cpu_seconds=int(limit) + 1))
         if code == -1:
             if deadline.expired():
-                return stage, f"not built: the time budget of {ctx.budget:.0f} s ran out"
-            return stage, (f"not built: the stage's compile time limit of {ctx.weights.compile_timeout:.0f} s ran "
-                           f"out (compile_timeout_seconds); look for a template or constexpr computation that "
-                           f"never ends")
+                return None, f"not built: the time budget of {ctx.budget:.0f} s ran out"
+            return None, (f"not built: the stage's compile time limit of {ctx.weights.compile_timeout:.0f} s ran "
+                          f"out (compile_timeout_seconds); look for a template or constexpr computation that "
+                          f"never ends")
         if code != 0:
-            return stage, first_compiler_error(out, strip, maps)
-        return stage, ""
+            return None, first_compiler_error(out, strip, maps)
+        return root / "server", ""
 
-    jobs = max(1, min(build_jobs, len(to_build)))
-    if to_build:
-        with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
-            built = dict(pool.map(build, to_build))
-        reap_all(user)
-    else:
-        built = {}
-    for (stage, hidden), s in suite_of.items():
-        error = built.get(stage, "")
-        if error.startswith("not built: the time budget"):
-            s.note = "not run: " + error[len("not built: "):] + " while building"
-        elif error:
-            s.build_error = error
+    def build_stage(stage: int) -> Tuple[int, Optional[Path], str]:
+        files = judge.server_overlay(reference, stage, body_of, students, ctx.cumulative)
+        program, error = compile_server(f"stage{stage:02d}", files, judge.server_table(reference, stage),
+                                        ctx.weights.compile_timeout)
+        return stage, program, error
 
-    # run: each case in its judge, the stage's server answering its calls
-    run_dir = slot.path
+    def build_group(item: Tuple[int, List[int]]) -> List[Tuple[int, Optional[Path], str]]:
+        """One server for several stages (judge.group_overlay): the headers are parsed once.
+        When it does not build (or not soon: a correct group takes seconds), each of its
+        stages is built alone, so that a mistake or a bomb costs its own stage only and the
+        message is that stage's."""
+        index, group = item
+        if len(group) > 1:
+            files = judge.group_overlay(reference, group, body_of, students, ctx.cumulative)
+            program, error = compile_server(f"group{index}", files, judge.group_table(reference, group),
+                                            min(ctx.weights.compile_timeout, GROUP_COMPILE_SECONDS))
+            if program is not None:
+                return [(stage, program, "") for stage in group]
+            if error.startswith("not built: the time budget"):
+                return [(stage, None, error) for stage in group]
+        return [build_stage(stage) for stage in group]
+
+    # the cases of each suite, the longest (at calibration) first
+    work_of: Dict[int, List[Tuple[float, Suite, Path, int, Case]]] = {}
     for s in suites:
-        if s.build_error or s.refused or s.note:
+        if s.refused or s.stage not in to_build:
             continue
-        server = slot.server_dir(s.stage) / "server"
-        stage_deadline = time.monotonic() + ctx.weights.stage_timeout
-        cases: List[Tuple[Path, int, Case]] = []
+        cases: List[Case] = []
+        items = []
         for name in s.targets:
             t = by_name[name]
             known = cache.cases(t)
             if known is None:
                 s.note = f"not run: {name}: its judge was not calibrated"
                 break
-            cases += [(cache.judge_program(t), int(expected), Case(str(case))) for case, expected, _ in known]
+            for entry in known:
+                case = Case(str(entry[0]))
+                cases.append(case)
+                seconds = float(entry[3]) if len(entry) > 3 else 0.0
+                items.append((seconds, s, cache.judge_program(t), int(entry[1]), case))
         if s.note:
             continue
         if not cases:
             s.note = "no test case was found"
             continue
-        log(f"grade: running {s.label}: {len(cases)} cases")
+        s.cases = cases
+        work_of.setdefault(s.stage, []).extend(items)
 
-        def one(item: Tuple[Path, int, Case], s: Suite = s, stage_deadline: float = stage_deadline,
-                server: Path = server) -> None:
-            program, expected, case = item
-            left = min(stage_deadline - time.monotonic(), deadline.left())
-            if deadline.left() <= 0:
-                case.output = f"not run: the time budget of {ctx.budget:.0f} s ran out"
-                return
-            if left <= 0:
-                case.output = (f"not run: the stage's time limit of {ctx.weights.stage_timeout:.0f} s was "
-                               f"used up by the cases before it")
-                return
-            case.status, output, case.seconds, _ = run_judged(
-                program, case.name, server, run_dir, min(ctx.weights.case_timeout, left), ctx.memory_mb, user,
-                expected)
-            output = maps.rewrite(output)
-            for prefix in strip:
-                output = output.replace(prefix.rstrip("/") + "/", "")
-            case.output = clip(output)
+    stage_deadlines: Dict[int, float] = {}
+    lock = threading.Lock()
+    run_dir = slot.path
+    servers: Dict[int, Path] = {}
 
-        if case_jobs > 1:
-            with concurrent.futures.ThreadPoolExecutor(case_jobs) as pool:
-                list(pool.map(one, cases))
-        else:
-            for item in cases:
-                one(item)
-        s.cases = [c for _, _, c in cases]
+    def one(item: Tuple[float, Suite, Path, int, Case]) -> None:
+        """One case in its judge, its stage's server answering the judge's calls."""
+        _, s, program, expected, case = item
+        with lock:     # a suite's time starts with its first case
+            stage_deadline = stage_deadlines.setdefault(id(s), time.monotonic() + ctx.weights.stage_timeout)
+        left = min(stage_deadline - time.monotonic(), deadline.left())
+        if deadline.left() <= 0:
+            case.output = f"not run: the time budget of {ctx.budget:.0f} s ran out"
+            return
+        if left <= 0:
+            case.output = (f"not run: the stage's time limit of {ctx.weights.stage_timeout:.0f} s was "
+                           f"used up by the cases before it")
+            return
+        case.status, output, case.seconds, _ = run_judged(
+            program, case.name, servers[s.stage], run_dir, min(ctx.weights.case_timeout, left), ctx.memory_mb,
+            user, expected, s.stage)
+        output = maps.rewrite(output)
+        for prefix in strip:
+            output = output.replace(prefix.rstrip("/") + "/", "")
+        case.output = clip(output)
+
+    # builds and cases in one pool: a group's cases start as soon as its server is built,
+    # while the other groups still build
+    jobs = max(1, min(build_jobs, len(to_build)))
+    groups = [g for g in (to_build[k * len(to_build) // jobs:(k + 1) * len(to_build) // jobs]
+                          for k in range(jobs)) if g]
+    pending: List[concurrent.futures.Future] = []
+    pool = concurrent.futures.ThreadPoolExecutor(max(1, jobs, case_jobs))
+
+    def build_and_queue(item: Tuple[int, List[int]]) -> None:
+        results = build_group(item)
+        ready = []
+        with lock:
+            for stage, program, error in results:
+                for hidden in (False, True):
+                    s = suite_of.get((stage, hidden))
+                    if s is None:
+                        continue
+                    if error.startswith("not built: the time budget"):
+                        s.note = "not run: " + error[len("not built: "):] + " while building"
+                    elif error:
+                        s.build_error = error
+                    if error:
+                        s.cases = []
+                if program is not None:
+                    servers[stage] = program
+                    ready += work_of.get(stage, [])
+                    log(f"grade: running stage{stage:02d}: {len(work_of.get(stage, []))} cases")
+            ready.sort(key=lambda w: -w[0])
+            pending.extend(pool.submit(one, w) for w in ready)
+
+    try:
+        with lock:
+            pending.extend(pool.submit(build_and_queue, g) for g in enumerate(groups))
+        done = 0
+        while True:
+            with lock:
+                if done == len(pending):
+                    break
+                future = pending[done]
+            future.result()
+            done += 1
+    finally:
+        pool.shutdown(wait=True)
+    if to_build:
         reap_all(user)
     not_run = sum(s.not_run for s in suites)
     skipped = [s.label for s in suites if s.note.startswith("not run")]
@@ -414,6 +479,7 @@ def make_context(args: argparse.Namespace, work: Path) -> Context:
                          f"readable; run `chmod -R go-rwx {top}`, or grade from a copy only you can read")
     cache = Cache(cache_dir, reference, hidden)
     cache.prepare()
+    names.keep_in(cache.root / "names")
     ctx = Context(reference, weights, stages, cache, user, args.cumulative, args.budget, args.memory_mb)
     for stage in sorted(set(weights.stages) - set(reference.stages)):
         ctx.instructor_notes.append(f"stage {stage:02d} is in the weights file but has no tests: not graded")
@@ -467,21 +533,21 @@ def calibrate(ctx: Context, jobs: int, timeout: float, stages: Optional[Sequence
             if len(names) != expected or len(set(names)) != len(names):
                 raise GradeError(f"{t.name}: expected {expected} distinct cases, as in its source, found "
                                  f"{len(names)} listed by its judge")
-        found[t.name] = [[n, 0, False] for n in names]
+        found[t.name] = [[n, 0, False, 0.0] for n in names]
         runs += [(t.name, program, cache.reference_server(t.stage), n) for n in names]
 
-    def run_one(item: Tuple[str, Path, Path, str]) -> Tuple[str, str, int, bool, str]:
+    def run_one(item: Tuple[str, Path, Path, str]) -> Tuple[str, str, int, bool, str, float]:
         name, program, server, case = item
-        status, output, _, verdict = run_judged(program, case, server, cache.root, ctx.weights.case_timeout,
-                                                ctx.memory_mb, grader, 0)
-        return name, case, verdict.assertions if verdict else 0, status == "passed", output
+        status, output, seconds, verdict = run_judged(program, case, server, cache.root, ctx.weights.case_timeout,
+                                                      ctx.memory_mb, grader, 0)
+        return name, case, verdict.assertions if verdict else 0, status == "passed", output, seconds
 
     failing = []
     with concurrent.futures.ThreadPoolExecutor(max(1, jobs)) as pool:
-        for name, case, assertions, passed, output in pool.map(run_one, runs):
+        for name, case, assertions, passed, output, seconds in pool.map(run_one, runs):
             for entry in found[name]:
                 if entry[0] == case:
-                    entry[1], entry[2] = assertions, passed
+                    entry[1:] = [assertions, passed, round(seconds, 3)]
             if not passed:
                 failing.append(f"{name}: {case}")
     cache.record_cases(found)

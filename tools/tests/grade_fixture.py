@@ -61,8 +61,7 @@ FIXTURE_HEADER = """
         // RT_EXERCISE_END
     }
 
-    template <class T>
-    T identity(T n)
+    inline long identity(long n)
     {
         // RT_EXERCISE_BEGIN(stage03: identity)
         return n;

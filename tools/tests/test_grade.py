@@ -6,6 +6,7 @@ cache shared by its cases).
 Run: python3 -m unittest discover -s tools/tests -v   (ctest runs it as tools.grade)
 """
 
+import contextlib
 import csv
 import io
 import json
@@ -179,10 +180,10 @@ class Regions(unittest.TestCase):
             ("    if (a) {", "        return b;"): "fx.hpp:10:12: expected '}' for this '{'",
             ("    return 0; /* the rest of the file",): "expected */ closing this comment",
             ("    auto s = R\"x(never closed",): "expected the raw string closed inside the region",
-            ("    return 0; // a comment \\",): "a backslash at its end",
+            ("    return 0; // a comment \\",): "expected no backslash at the end of a line",
             ("    asm(\".incbin \\\"/etc/passwd\\\"\");",): "expected no inline assembly",
-            ("    _Pragma(\"once\") return 0;",): "expected no a pragma",
-            ("    static int (*p)() __attribute__((section(\".init_array\"))) = nullptr;",):
+            ("    _Pragma(\"once\") return 0;",): "expected no pragma",
+            ("    int (*p)() __attribute__((section(\".init_array\"))) = nullptr;",):
                 "expected no compiler attribute",
             ("    [[gnu::section(\".init_array\")]] static int x = 0;",): "found [[gnu::",
             ("    const char* s = \"open;",): "expected the string closed on its line",
@@ -242,20 +243,20 @@ class Regions(unittest.TestCase):
         self.assertIn("    return n;", composed.text)              # region 2: the reference's
         self.assertEqual(splice.outside_differences(student, ref, regions), 7)   # "// two lines of mine"
 
-    def test_a_plain_function_compiles_apart_and_a_template_does_not(self):
-        ref = dedent(FIXTURE_HEADER)
-        lines = ref.split("\n")
-        regions = make_kit.scan_file("include/rt/fx.hpp", ref, {1, 2, 3}, [])
-        keep = splice.split_form(lines, regions[0], "01_1")
-        self.assertEqual(keep.split(" //")[0],
-                         "[[gnu::used]] static int (*const rt_grader_keep_01_1)(int a, int b) = &add;")
-        self.assertIsNone(splice.split_form(lines, regions[2], "03_1"))     # identity is a template
-        declared = splice.compose("include/rt/fx.hpp", ref, regions, {}, {}, None, declare={0})
-        self.assertIn("inline int add(int a, int b);", declared.text)
-        self.assertNotIn("return a + b;", declared.text)
-        unit = splice.compose("include/rt/fx.hpp", ref, regions, {}, {}, None, keep={0: keep})
-        self.assertIn("return a + b;", unit.text)
-        self.assertIn("= &add;", unit.text)
+    def test_a_template_exercise_needs_a_stand_in_for_each_parameter(self):
+        from grading import judge
+        tmp = temporary_folder("template")
+        try:
+            ref = make_fixture_reference(tmp)
+            fx = ref / "include/rt/fx.hpp"
+            self.assertEqual(len(judge.exercises(grade.Reference(ref, exclude=[]))), 3)
+            fx.write_text(fx.read_text().replace("inline long identity(long n)", "template <class T>\nT identity(T n)"))
+            with self.assertRaises(grade.GradeError) as e:
+                judge.exercises(grade.Reference(ref, exclude=[]))
+            self.assertRegex(str(e.exception), r"^include/rt/fx.hpp:\d+: expected an exercise that is a function, "
+                                               r"or a template over Accelerator or HitItem .* found a template over T;")
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 class Reports(unittest.TestCase):
@@ -331,44 +332,67 @@ class Reports(unittest.TestCase):
 
 @unittest.skipUnless(os.name == "posix", "process groups and signals")
 class Isolation(unittest.TestCase):
-    def test_pass_fail_crash_and_hang(self):
-        py = sys.executable
-        self.assertEqual(grade.run_case([py, "-c", "print('ok')"], None, 10, 0)[0], "passed")
-        self.assertEqual(grade.run_case([py, "-c", "raise SystemExit(1)"], None, 10, 0)[0], "failed")
-        status, output, _ = grade.run_case([py, "-c", "import os, signal; os.kill(os.getpid(), signal.SIGSEGV)"],
-                                           None, 10, 0)
+    """sandbox.run_judged: a case's status comes from the judge's verdict, written on its
+    own descriptor, never from what the process prints. The judges here are small
+    programs that write a verdict, or do not."""
+
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="rt-isolation-"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def judge(self, body):
+        """A judge program: Python running `body`, with `verdict(line)` writing to the verdict fd."""
+        path = self.tmp / f"judge{len(list(self.tmp.iterdir()))}"
+        path.write_text(f"#!{sys.executable}\nimport os, signal, subprocess, sys\n"
+                        f"def verdict(text):\n    os.write(int(os.environ['RT_JUDGE_VERDICT_FD']), text.encode())\n"
+                        + textwrap.dedent(body))
+        path.chmod(0o755)
+        return path
+
+    def run_case(self, body, expected=1, timeout=10.0):
+        from grading.sandbox import TestUser, run_judged
+        me = TestUser("grader", os.getuid(), os.getgid())
+        status, output, seconds, _ = run_judged(self.judge(body), "a case, with a comma", self.tmp / "none",
+                                                self.tmp, timeout, 0, me, expected)
+        return status, output, seconds
+
+    PASSED = "verdict('case\\t1\\t3\\t0\\t0\\nend\\t1\\t0\\n')\n"
+
+    def test_only_the_verdict_passes_a_case(self):
+        self.assertEqual(self.run_case(self.PASSED)[0], "passed")
+        # a forged doctest summary on stdout, and exit 0, with no verdict
+        status, output, _ = self.run_case("print('[doctest] test cases: 1 | 1 passed | 0 failed')\n")
+        self.assertEqual(status, "failed")
+        self.assertIn("no verdict", output)
+        # a case that failed, one cut short (no end line), one with fewer checks than the reference's run
+        self.assertEqual(self.run_case("verdict('case\\t0\\t3\\t1\\t0\\nend\\t0\\t1\\n')\n")[0], "failed")
+        self.assertEqual(self.run_case("verdict('case\\t1\\t3\\t0\\t0\\n')\n")[0], "failed")
+        status, output, _ = self.run_case(self.PASSED, expected=4)
+        self.assertEqual(status, "failed")
+        self.assertIn("3 of the 4 checks", output)
+        # a verdict, then a non-zero exit
+        self.assertEqual(self.run_case(self.PASSED + "sys.exit(3)\n")[0], "failed")
+
+    def test_crash_and_hang(self):
+        status, output, _ = self.run_case("os.kill(os.getpid(), signal.SIGSEGV)\n")
         self.assertEqual(status, "crashed")
         self.assertIn("SIGSEGV", output)
         # a hang, with a child process that would outlive a plain kill
-        status, output, seconds = grade.run_case(
-            ["sh", "-c", "sleep 30 & sleep 30"], None, 0.5, 0)
+        status, output, seconds = self.run_case("subprocess.Popen(['sleep', '30'])\nimport time\ntime.sleep(30)\n",
+                                                timeout=0.5)
         self.assertEqual(status, "timeout")
         self.assertLess(seconds, 10)
 
-    def test_a_process_left_running_does_not_hold_the_case_and_long_output_is_cut(self):
-        status, output, seconds = grade.run_case(["sh", "-c", "sleep 30 & echo done"], None, 20, 0)
-        self.assertEqual((status, output.strip()), ("passed", "done"))
-        self.assertLess(seconds, 10)
-        py = sys.executable
-        status, output, _ = grade.run_case([py, "-c", "print('x' * 5_000_000); print('the end')"], None, 20, 0)
+    def test_long_output_is_cut_and_the_filter_matches_names_with_commas(self):
+        status, output, _ = self.run_case("print(sys.argv[1]); print('x' * 5_000_000); print('the end')\n"
+                                          + self.PASSED)
         self.assertEqual(status, "passed")
         self.assertLess(len(output), 200_000)
         self.assertIn("bytes left out", output)
         self.assertTrue(output.rstrip().endswith("the end"))
-
-    def test_a_case_passes_only_when_doctest_says_so(self):
-        py = sys.executable
-        summary = "[doctest] test cases: 1 | 1 passed | 0 failed | 3 skipped"
-        self.assertEqual(grade.run_case([py, "-c", f"print({summary!r})"], None, 10, 0, doctest=True)[0], "passed")
-        # a program that ends itself before doctest reports, and a filter that matches nothing
-        status, output, _ = grade.run_case([py, "-c", "pass"], None, 10, 0, doctest=True)
-        self.assertEqual(status, "failed")
-        self.assertIn("ended before doctest reported", output)
-        none = "[doctest] test cases: 0 | 0 passed | 0 failed | 4 skipped"
-        self.assertEqual(grade.run_case([py, "-c", f"print({none!r})"], None, 10, 0, doctest=True)[0], "failed")
-
-    def test_case_filters_match_names_with_commas(self):
-        self.assertEqual(grade.case_filter("a, b, c\\d"), "a? b? c?d")
+        self.assertIn("--test-case=a case? with a comma", output)
 
 
 def make_autograder(output, *options, source):
@@ -409,9 +433,23 @@ class AutograderZip(unittest.TestCase):
         self.assertFalse((self.tmp / "a.zip").exists())
 
 
-# Student's answers: stage 01 right, stage 02 aborts on 7, stage 03 hangs on 0.
-STUDENT_HEADER = FIXTURE_HEADER.replace("return *p;", "if (*p == 7)\n            std::abort();\n        return *p;").replace(
+# Student's answers: stage 01 right, stage 02 crashes on 7 (it reads through a null
+# pointer), stage 03 hangs on 0.
+STUDENT_HEADER = FIXTURE_HEADER.replace(
+    "return *p;", "const volatile int* none = nullptr;\n        if (*p == 7)\n            return *none;\n"
+                  "        return *p;").replace(
     "return n;", "volatile bool forever = n == 0;\n        while (forever) {\n        }\n        return n;")
+
+
+@contextlib.contextmanager
+def scanner_off():
+    """The region scanner (splice.check_body) accepts everything, as in the attack suite."""
+    saved = splice.check_body
+    splice.check_body = lambda *args, **kwargs: ""
+    try:
+        yield
+    finally:
+        splice.check_body = saved
 
 
 @unittest.skipUnless(have_build_tools(), "needs cmake, ninja and a C++ compiler")
@@ -424,7 +462,7 @@ class EndToEnd(unittest.TestCase):
         cls.tmp = temporary_folder("e2e")
         cls.reference = make_fixture_reference(cls.tmp)
         cls.hidden = cls.tmp / "hidden"
-        cls.hidden.mkdir()
+        cls.hidden.mkdir(mode=0o700)
         (cls.hidden / "stage01_more.cpp").write_text(HIDDEN_SUITE)
         cls.cache = cls.tmp / "cache"
         cls.count = 0
@@ -512,15 +550,20 @@ class EndToEnd(unittest.TestCase):
 
     def test_a_region_that_ends_the_program_early_does_not_pass(self):
         early = FIXTURE_HEADER.replace("return a + b;", "std::_Exit(0);")
-        tests, results = self.grade(self.student(early))
+        self.assertIn("found std::_Exit", splice.check_body("include/rt/fx.hpp", 1, ["    std::_Exit(0);"]))
+        with scanner_off():     # the region scanner refuses it; the judge must stop it too
+            tests, results = self.grade(self.student(early))
         self.assertEqual(tests["Stage 01"]["score"], 0)
-        self.assertIn("ended before doctest reported", tests["Stage 01"]["output"])
+        self.assertIn("your code ended the program (exit code 0): a function must return its answer, never end "
+                      "the program", tests["Stage 01"]["output"])
+        self.assertNotIn("no verdict", tests["Stage 01"]["output"])
 
     @unittest.skipUnless(run_as_arguments(), "the grader ends a case's leftovers only as root, with a test user")
     def test_processes_a_case_leaves_running_are_ended(self):
         daemon = FIXTURE_HEADER.replace(
             "return a + b;", 'std::system("setsid sleep 312 > /dev/null 2>&1 < /dev/null &");\n        return a + b;')
-        tests, results = self.grade(self.student(daemon), "--stages", "1")
+        with scanner_off():     # the region scanner refuses std::system; the sandbox must hold too
+            tests, results = self.grade(self.student(daemon), "--stages", "1")
         self.assertEqual(tests["Stage 01"]["score"], 10)
         left = []
         for entry in os.listdir("/proc"):

@@ -87,8 +87,10 @@ class Attacks(unittest.TestCase):
         hidden.mkdir(mode=0o700)
         (hidden / "stage03_secret.cpp").write_text(HIDDEN_SUITE)
         weights = cls.tmp / "weights.json"
-        weights.write_text(json.dumps({"case_timeout_seconds": 5, "stage_timeout_seconds": 20,
-                                       "compile_timeout_seconds": 20,
+        # limits well above what a correct case takes (stage 04's longest, 3 s on an idle
+        # machine), as the suite runs beside other tests: only an attack may reach them
+        weights.write_text(json.dumps({"case_timeout_seconds": 15, "stage_timeout_seconds": 60,
+                                       "compile_timeout_seconds": 40,
                                        "stages": {"03": {"visible": 10, "hidden": 5}, "04": {"visible": 15}}}))
         cls.cache = cls.tmp / "cache"
         cls.common = ["--reference", str(cls.reference), "--hidden", str(hidden), "--cache", str(cls.cache),

@@ -543,7 +543,7 @@ class BatchEndToEnd(unittest.TestCase):
         cls.tmp = temporary_folder("batch")
         cls.reference = make_fixture_reference(cls.tmp)
         cls.hidden = cls.tmp / "hidden"
-        cls.hidden.mkdir()
+        cls.hidden.mkdir(mode=0o700)
         (cls.hidden / "stage01_more.cpp").write_text(HIDDEN_SUITE)
 
     @classmethod
