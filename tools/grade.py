@@ -60,7 +60,8 @@ from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, j
                             junit_bytes, stage_points, table)
 from grading import judge, names  # noqa: E402
 from grading.common import run  # noqa: E402
-from grading.sandbox import TestUser, choose_user, reap_all, run_judged, slot_user  # noqa: E402
+from grading.sandbox import (Processors, TestUser, UidBlock, choose_user, claim_uid_block, reap_all,  # noqa: E402
+                             run_judged, slot_user)
 from grading.splice import LineMaps, StudentFile, outside_differences, normalise, read_student_file  # noqa: E402
 from grading.submission import HEADER_SUFFIXES, find_rt_folder, unpack  # noqa: E402,F401
 from grading.weights import VISIBILITIES, Weights, load_weights  # noqa: E402,F401
@@ -87,6 +88,11 @@ class Context:
     budget: float
     memory_mb: int
     instructor_notes: List[str] = field(default_factory=list)
+    # each running case's judge and server share a processor: a call's handover is then a
+    # switch of task, not a wake-up across processors
+    processors: Processors = field(default_factory=Processors)
+    # the uids this run's slots run as, no other grading run's (when the grader is root)
+    uid_block: Optional[UidBlock] = None
 
     @property
     def mode_line(self) -> str:
@@ -242,7 +248,7 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
     by_name = {t.name: t for t in cache.targets(set(ctx.stages))}
 
     # each stage's server: the student's code of the stage, built as the slot's test user
-    user = slot_user(ctx.user, slot.index)
+    user = slot_user(ctx.user, slot.index, ctx.uid_block)
     uid, gid = (user.uid, user.gid) if user.dedicated else (None, None)
     slot.prepare(uid, gid)
     maps = LineMaps(student_lines={rel: f.lines for rel, f in students.items()})
@@ -343,9 +349,10 @@ def grade_one(ctx: Context, submission: Path, work: Path, slot: Slot, build_jobs
             case.output = (f"not run: the stage's time limit of {ctx.weights.stage_timeout:.0f} s was "
                            f"used up by the cases before it")
             return
-        case.status, output, case.seconds, _ = run_judged(
-            program, case.name, servers[s.stage], run_dir, min(ctx.weights.case_timeout, left), ctx.memory_mb,
-            user, expected, s.stage)
+        with ctx.processors.one() as cpu:
+            case.status, output, case.seconds, _ = run_judged(
+                program, case.name, servers[s.stage], run_dir, min(ctx.weights.case_timeout, left), ctx.memory_mb,
+                user, expected, s.stage, cpu)
         output = maps.rewrite(output)
         for prefix in strip:
             output = output.replace(prefix.rstrip("/") + "/", "")
@@ -481,6 +488,8 @@ def make_context(args: argparse.Namespace, work: Path) -> Context:
     cache.prepare()
     names.keep_in(cache.root / "names")
     ctx = Context(reference, weights, stages, cache, user, args.cumulative, args.budget, args.memory_mb)
+    if user.dedicated:
+        ctx.uid_block = claim_uid_block()
     for stage in sorted(set(weights.stages) - set(reference.stages)):
         ctx.instructor_notes.append(f"stage {stage:02d} is in the weights file but has no tests: not graded")
     return ctx
@@ -538,8 +547,9 @@ def calibrate(ctx: Context, jobs: int, timeout: float, stages: Optional[Sequence
 
     def run_one(item: Tuple[str, Path, Path, str]) -> Tuple[str, str, int, bool, str, float]:
         name, program, server, case = item
-        status, output, seconds, verdict = run_judged(program, case, server, cache.root, ctx.weights.case_timeout,
-                                                      ctx.memory_mb, grader, 0)
+        with ctx.processors.one() as cpu:
+            status, output, seconds, verdict = run_judged(program, case, server, cache.root,
+                                                          ctx.weights.case_timeout, ctx.memory_mb, grader, 0, cpu)
         return name, case, verdict.assertions if verdict else 0, status == "passed", output, seconds
 
     failing = []

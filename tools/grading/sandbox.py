@@ -11,17 +11,20 @@ nothing the student's code does, is read for it.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pwd
 import re
 import shutil
 import signal
+import stat
 import subprocess
 import tempfile
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, Iterator, List, Optional, Sequence, Tuple
 
 from .common import GradeError, kill_group, run
 
@@ -44,8 +47,8 @@ class TestUser:
 
     def describe(self) -> str:
         if self.dedicated:
-            return (f"the tests ran as the user {self.name} (uid {self.uid}), which cannot read the "
-                    f"grader's files")
+            return (f"the tests ran as uids of their own, unprivileged, which cannot read the grader's files "
+                    f"(checked as the user {self.name})")
         return (f"the tests ran as {self.name}, the grader's own user (grade.py is not root), so they "
                 f"could read every file that user can; run it as root with a test user "
                 f"({DEFAULT_USER}) to keep a submission's code from reading the reference")
@@ -140,31 +143,78 @@ class TestUser:
         return None
 
 
-# Slot k > 0 of a batch runs as uid SLOT_UIDS + k (and that gid), a user of its own that
-# no other process has: so a submission's processes cannot signal, trace or read those of
-# another, and all of a slot's processes are ended after each suite. The names are not in
-# /etc/passwd; the kernel needs none.
+# Each slot of a grading run (slot k of a batch, or the one slot of a single submission)
+# runs as a uid of its own that no other process has: SLOT_UIDS + block * BLOCK + k, where
+# the block is this run's alone (claim_uid_block: two graders on one machine never share
+# one). So a submission's processes cannot signal, trace or read those of another, or of
+# another grading run, and all of a slot's processes are ended after each suite without
+# touching anyone else's. The uids are not in /etc/passwd; the kernel needs none.
 SLOT_UIDS = 3_000_000_000
+BLOCK = 64
+BLOCKS = 4096
 
 
-def slot_user(user: TestUser, index: int) -> TestUser:
-    """The user slot `index` runs as: the test user itself for slot 0, else a uid of its own
-    (only when the grader is root: the grader's own user otherwise)."""
-    if not user.dedicated or index == 0:
+class UidBlock:
+    """A block of BLOCK uids held by this grading run: an exclusive lock on a file in a
+    folder only root may write, released when the run ends, however it ends."""
+
+    def __init__(self, index: int, handle) -> None:
+        self.index = index
+        self._handle = handle     # kept open: the lock lives as long as it does
+
+    def uid(self, slot: int) -> int:
+        if not 0 <= slot < BLOCK:
+            raise GradeError(f"expected at most {BLOCK} slots in one grading run, found slot {slot}; "
+                             f"grade with fewer --jobs")
+        return SLOT_UIDS + self.index * BLOCK + slot
+
+
+def claim_uid_block(folder: Path = Path("/run/rt-grader")) -> UidBlock:
+    """The first block of uids that no other grading run on this machine holds."""
+    import fcntl
+    try:
+        folder.mkdir(mode=0o700, parents=True, exist_ok=True)
+    except OSError:
+        folder = Path(tempfile.gettempdir()) / "rt-grader-uids"
+        folder.mkdir(mode=0o700, exist_ok=True)
+    info = folder.lstat()
+    if not stat_is_private_dir(info):
+        raise GradeError(f"{folder}: expected a folder of root's that no one else may write, found one owned "
+                         f"by uid {info.st_uid} with mode {info.st_mode & 0o777:o}; remove it")
+    for index in range(BLOCKS):
+        handle = open(folder / f"block{index}.lock", "a+b")
+        try:
+            fcntl.flock(handle.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            handle.close()
+            continue
+        return UidBlock(index, handle)
+    raise GradeError(f"expected a free block of test uids in {folder}, found all {BLOCKS} held by running graders")
+
+
+def stat_is_private_dir(info: os.stat_result) -> bool:
+    return stat.S_ISDIR(info.st_mode) and info.st_uid == os.geteuid() and not info.st_mode & 0o022
+
+
+def slot_user(user: TestUser, index: int, block: Optional[UidBlock]) -> TestUser:
+    """The user slot `index` runs as: a uid of its own, from this run's block (only when
+    the grader is root, and so `user` is dedicated: the grader's own user otherwise)."""
+    if not user.dedicated:
         return user
-    uid = SLOT_UIDS + index
+    prefix = list(user.prefix)
+    if block is None or not prefix or not prefix[0].endswith("setpriv"):
+        if index == 0:
+            return user
+        raise GradeError("expected setpriv (util-linux) to run a batch's slots as users of their own, found none; "
+                         "install util-linux or grade with --jobs 1")
+    uid = block.uid(index)
     try:
         pwd.getpwuid(uid)
         raise GradeError(f"expected uid {uid} to be unused (the grader's slot {index} runs as it), found "
-                         f"a user with it; grade with fewer --jobs")
+                         f"a user with it")
     except KeyError:
         pass
-    prefix = list(user.prefix)
-    if prefix and prefix[0].endswith("setpriv"):
-        prefix = [prefix[0], f"--reuid={uid}", f"--regid={uid}", "--clear-groups", "--no-new-privs", "--"]
-    else:
-        raise GradeError("expected setpriv (util-linux) to run a batch's slots as users of their own, found none; "
-                         "install util-linux or grade with --jobs 1")
+    prefix = [prefix[0], f"--reuid={uid}", f"--regid={uid}", "--clear-groups", "--no-new-privs", "--"]
     return TestUser(f"{user.name}+{index}", uid, uid, prefix, dedicated=True)
 
 
@@ -364,15 +414,44 @@ def _read_verdict(f) -> Optional[Verdict]:
     return v
 
 
+class Processors:
+    """Hands each running case the processor with the fewest cases on it, for its judge and
+    its server to share (RT_JUDGE_CPU). One per grading run: the submissions of a batch
+    draw from the same pool, so two cases share a processor only when there are more
+    cases than processors."""
+
+    def __init__(self) -> None:
+        cpus = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
+        self._load = {cpu: 0 for cpu in cpus}
+        self._lock = threading.Lock()
+
+    @contextlib.contextmanager
+    def one(self) -> Iterator[Optional[int]]:
+        with self._lock:
+            cpu = min(self._load, key=lambda c: (self._load[c], c)) if self._load else None
+            if cpu is not None:
+                self._load[cpu] += 1
+        try:
+            yield cpu
+        finally:
+            if cpu is not None:
+                with self._lock:
+                    self._load[cpu] -= 1
+
+
 def run_judged(judge: Path, case: str, server: Path, cwd: Path, timeout: float, memory_mb: int,
-               user: TestUser, expected_assertions: int, stage: int = 0) -> Tuple[str, str, float, Optional[Verdict]]:
+               user: TestUser, expected_assertions: int, stage: int = 0,
+               cpu: Optional[int] = None) -> Tuple[str, str, float, Optional[Verdict]]:
     """Runs one case in its judge, whose calls into the student's code go to `server`
-    (started by the judge, confined, as `user`, told it serves `stage`); returns (status,
-    output, seconds, verdict) with status passed, failed, crashed or timeout."""
+    (started by the judge, confined, as `user`, told it serves `stage`; both on processor
+    `cpu` when given); returns (status, output, seconds, verdict) with status passed,
+    failed, crashed or timeout."""
     t0 = time.monotonic()
     env = {"PATH": "/usr/bin:/bin", "HOME": str(cwd), "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8",
            "RT_JUDGE_SERVER": str(server), "RT_JUDGE_SECONDS": str(max(1, int(timeout))),
            "RT_JUDGE_MEMORY_MB": str(memory_mb), "RT_JUDGE_STAGE": str(stage)}
+    if cpu is not None:
+        env["RT_JUDGE_CPU"] = str(cpu)
     if user.dedicated:
         env["RT_JUDGE_UID"], env["RT_JUDGE_GID"] = str(user.uid), str(user.gid)
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as verdict_file:

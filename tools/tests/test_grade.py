@@ -395,6 +395,28 @@ class Isolation(unittest.TestCase):
         self.assertIn("--test-case=a case? with a comma", output)
 
 
+    def test_two_grading_runs_never_share_a_uid_and_a_case_gets_one_processor(self):
+        from grading.sandbox import BLOCK, Processors, TestUser, claim_uid_block, slot_user
+        folder = self.tmp / "uids"
+        first, second = claim_uid_block(folder), claim_uid_block(folder)
+        self.assertNotEqual(first.index, second.index)
+        root = TestUser("rtgrader", 999, 999, ["/usr/bin/setpriv", "--reuid=999", "--"], dedicated=True)
+        uids = {slot_user(root, k, block).uid for block in (first, second) for k in range(3)}
+        self.assertEqual(len(uids), 6, "every slot of both runs has a uid of its own")
+        self.assertTrue(all(uid >= 3_000_000_000 for uid in uids))
+        with self.assertRaises(grade.GradeError):
+            first.uid(BLOCK)
+        # a block is free again once its run has ended
+        index = first.index
+        del first
+        self.assertEqual(claim_uid_block(folder).index, index)
+        # the judge and the server of a case share a processor; two cases get two when there are
+        processors = Processors()
+        with processors.one() as a, processors.one() as b:
+            if len(os.sched_getaffinity(0)) > 1:
+                self.assertNotEqual(a, b)
+
+
 def make_autograder(output, *options, source):
     return subprocess.run([sys.executable, str(TOOLS / "gradescope" / "make_autograder.py"), str(output),
                            "--source", str(source), *options], capture_output=True, text=True, timeout=300)
