@@ -45,6 +45,8 @@ FIXTURE_HEADER = """
 
     #include <cstdlib>
 
+    #include <rt/error.hpp>
+
     namespace rt {
 
     inline int add(int a, int b)

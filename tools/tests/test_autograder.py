@@ -124,7 +124,8 @@ class Gradescope(unittest.TestCase):
         # the body of the report, `return false;`, scores what it scores without the macros
         with_macros = self.run_autograder({"vec.hpp": cheat, "sphere.hpp": self.sphere_with(unused + "    return false;")})
         without = self.run_autograder({"sphere.hpp": self.sphere_with(unused + "    return false;")})
-        self.assertEqual(self.stage03(with_macros)[0]["score"], self.stage03(without)[0]["score"])
+        self.assertEqual(self.stage03(with_macros)[0]["score"], self.stage03(without)[0]["score"],
+                         self.stage03(with_macros)[0]["output"][:3000])
         self.assertLess(self.stage03(with_macros)[0]["score"], self.stage03(with_macros)[0]["max_score"])
 
     def test_a_directive_in_the_region_scores_zero_and_names_its_line(self):
@@ -138,32 +139,39 @@ class Gradescope(unittest.TestCase):
                       f"found #define;", test["output"])
 
     def test_the_code_of_a_submission_cannot_read_the_reference(self):
-        targets = [self.root / "source" / "rt" / "include" / "rt" / "shading.hpp",
-                   self.root / "cache" / "slots" / "0" / "overlay" / "stage03" / "include" / "rt" / "shading.hpp",
-                   self.root / "cache" / "tree" / "tests" / "stage03_sphere.cpp"]
-        for target in targets[:2]:
-            self.assertIn("RT_EXERCISE_BEGIN(stage05", target.read_text())   # root reads the reference there
+        reference = self.root / "source" / "rt" / "include" / "rt" / "shading.hpp"
+        text = reference.read_text()                               # root reads the reference there
+        begin = text.index("RT_EXERCISE_BEGIN(stage05")
+        body = [l.strip() for l in text[begin:text.index("RT_EXERCISE_END", begin)].split("\n")[1:]
+                if len(l.strip()) > 24 and not l.strip().startswith("//")]
+        self.assertTrue(body, "stage 05's region of the reference has no line to look for")
+        targets = [reference, self.root / "cache" / "tree" / "tests" / "stage03_sphere.cpp"]
         paths = ", ".join(json.dumps(str(t)) for t in targets)
-        body = (f"    for (const char* path : {{{paths}}}) {{\n"
-                f"        if (std::FILE* f = std::fopen(path, \"r\")) {{\n"
-                f"            char line[160] = {{}};\n"
-                f"            std::fputs(std::fgets(line, sizeof line, f) ? \"LEAKED: \" : \"LEAKED nothing: \", stderr);\n"
-                f"            std::fputs(line, stderr);\n"
-                f"            std::fclose(f);\n"
-                f"        }} else {{\n"
-                f"            std::perror(path);\n"
-                f"        }}\n"
-                f"    }}\n"
-                f"    (void)s; (void)r; (void)tmin; (void)tmax; (void)rec;\n"
-                f"    return false;")
-        results = self.run_autograder({"sphere.hpp": self.sphere_with(body)})
+        attack = (f"    for (const char* path : {{{paths}}}) {{\n"
+                  f"        if (std::FILE* f = std::fopen(path, \"r\")) {{\n"
+                  f"            char line[160] = {{}};\n"
+                  f"            std::fgets(line, sizeof line, f);\n"
+                  f"            throw rt::error(std::string(\"LEAKED: \") + line);\n"
+                  f"        }}\n"
+                  f"    }}\n"
+                  f"    (void)s; (void)r; (void)tmin; (void)tmax; (void)rec;\n"
+                  f"    return false;")
+        results = self.run_autograder({"sphere.hpp": self.sphere_with(attack)})
         output = self.stage03(results)[0]["output"]
-        self.assertNotIn("LEAKED", output)
-        for shown in (r"/source/rt/include/rt/shading\.hpp",   # the reference
-                      r"^include/rt/shading\.hpp",              # stage 03's overlay (the path as shown)
-                      r"^tests/stage03_sphere\.cpp"):           # the cache's tree
-            self.assertRegex(output, "(?m)" + shown + ": Permission denied$")
-
+        self.assertEqual(self.stage03(results)[0]["score"], 0)
+        self.assertRegex(output, r"include/rt/sphere\.hpp:\d+:\d+: expected .*, found std::(FILE|fopen);")
+        self.assertNotIn("LEAKED", json.dumps(results))
+        # the server the submission's code was built into holds the kit's stub of stage 05,
+        # not the reference's body (tools/grading/tests/test_attacks.py reads with the
+        # scanner off)
+        self.run_autograder({})
+        servers = sorted((self.root / "cache" / "slots").glob("*/server/*/include/rt/shading.hpp"))
+        self.assertTrue(servers, "expected the server's sources in the cache's slot")
+        for server in servers:
+            source = server.read_text()
+            self.assertIn("RT_EXERCISE_BEGIN(stage05", source)
+            for line in body:
+                self.assertNotIn(line, source, f"{server} holds the reference's stage-05 body")
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,7 +1,7 @@
-"""tools/grade.py on this repository's own stages (one cache for every case; about a minute
-on 2 cores): a correct submission scores full points (its time is printed, not asserted:
-docs/instructor-guide.md gives the figure), a compile error in stage 05's region costs stage 05 only, and the output students see names no hidden
-suite.
+"""tools/grade.py on this repository's own stages (one cache for every case, calibrated
+first: about 5 minutes on 2 cores): a correct submission scores full points (its time is
+printed, not asserted: docs/instructor-guide.md gives the figure), a compile error in stage
+05's region costs stage 05 only, and the output students see names no hidden suite.
 
 Run: python3 -m unittest -v test_grade_repo   (ctest runs it as tools.grade_repo)
 RT_GRADE_TEST_REFERENCE=DIR grades against another checkout of rt instead of this one.
