@@ -54,7 +54,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import make_kit  # noqa: E402  (the sibling module)
 from grading.batch import grade_batch  # noqa: E402
-from grading.cache import Cache, Reference, Slot  # noqa: E402
+from grading.cache import Cache, Reference, Slot, _flock  # noqa: E402
 from grading.common import Deadline, GradeError, SubmissionError, log, parse_stages, write_atomically  # noqa: E402
 from grading.report import (Case, Suite, clip, grades_csv, gradescope_results, junit,  # noqa: E402,F401
                             junit_bytes, stage_points, table)
@@ -572,12 +572,18 @@ def calibrate(ctx: Context, jobs: int, timeout: float, stages: Optional[Sequence
 
 
 def ensure_judges(ctx: Context, stages: Sequence[int]) -> None:
-    """Calibrates the stages whose judges are not (the first grading with a new cache)."""
-    missing = sorted({t.stage for t in ctx.cache.targets(set(stages)) if ctx.cache.cases(t) is None})
-    if missing:
-        log(f"grade: the judges of stages {', '.join(f'{s:02d}' for s in missing)} are not calibrated: "
-            f"calibrating them now (--calibrate does it once, ahead)")
-        log(calibrate(ctx, os.cpu_count() or 2, max(ctx.budget, 600), missing))
+    """Calibrates the stages whose judges are not (the first grading with a new cache).
+    One calibration at a time, whoever asks: the workers of a batch, or two graders with
+    one cache, would otherwise build the reference's servers in the same folders."""
+    if all(ctx.cache.cases(t) is not None for t in ctx.cache.targets(set(stages))):
+        return
+    with _flock(ctx.cache.root / ".calibrate.lock"):
+        ctx.cache.forget_cases()
+        missing = sorted({t.stage for t in ctx.cache.targets(set(stages)) if ctx.cache.cases(t) is None})
+        if missing:
+            log(f"grade: the judges of stages {', '.join(f'{s:02d}' for s in missing)} are not calibrated: "
+                f"calibrating them now (--calibrate does it once, ahead)")
+            log(calibrate(ctx, os.cpu_count() or 2, max(ctx.budget, 600), missing))
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -398,6 +398,10 @@ class Cache:
                 self._cases = {}
         return self._cases.get(target.name)
 
+    def forget_cases(self) -> None:
+        """cases() reads cases.json again (another grader may have calibrated)."""
+        self._cases = None
+
     def record_cases(self, found: Dict[str, List[List[object]]]) -> None:
         with _flock(self.root / ".judge.lock"):
             try:

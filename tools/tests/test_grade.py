@@ -227,7 +227,7 @@ class Regions(unittest.TestCase):
         self.assertTrue(any("found no open region" in n for n in student.notes))
 
     def test_composed_headers_keep_the_students_line_numbers(self):
-        ref = dedent(FIXTURE_HEADER)
+        ref = dedent(FIXTURE_HEADER).replace("#include <rt/error.hpp>\n\n", "")   # the kit's body needs it
         regions = make_kit.scan_file("include/rt/fx.hpp", ref, {1, 2, 3}, [])
         mine = ref.replace("namespace rt {\n", "namespace rt {\n// two lines of mine\n// ignored\n", 1)
         mine = mine.replace("    return a + b;", "    int c = a + b;\n    return c;")

@@ -595,7 +595,8 @@ class BatchEndToEnd(unittest.TestCase):
         self.assertEqual(code, 1, stderr.getvalue()[-3000:])
         lines = stdout.getvalue().splitlines()
         self.assertEqual(lines[-1], f"grade: 16 rows in {out / 'grades.csv'}: 8 graded, 6 not graded, 2 errors "
-                                    f"(status error: ..., exit code 1)")
+                                    f"(status error: ..., exit code 1)",
+                         (out / "grades.csv").read_text(encoding="utf-8", errors="replace"))
         self.assertEqual(lines[-2], f"grade: left out 1 hidden entry of {folder} (not a submission, no row): "
                                     f".DS_Store")
 
