@@ -2,6 +2,7 @@
 reference made with rt's own CMake files, temporary folders every user may enter, and the
 user the tests of a submission run as."""
 
+import contextlib
 import json
 import os
 import pwd
@@ -139,3 +140,16 @@ def student_copy(into: Path, header_text: str) -> Path:
     folder.mkdir(parents=True)
     (folder / "fx.hpp").write_text(dedent(header_text))
     return into
+
+
+@contextlib.contextmanager
+def scanner_off():
+    """The region scanner (splice.check_body) accepts everything: the judge and its sandbox
+    alone must hold."""
+    from grading import splice
+    saved = splice.check_body
+    splice.check_body = lambda *args, **kwargs: ""
+    try:
+        yield
+    finally:
+        splice.check_body = saved

@@ -6,7 +6,6 @@ cache shared by its cases).
 Run: python3 -m unittest discover -s tools/tests -v   (ctest runs it as tools.grade)
 """
 
-import contextlib
 import csv
 import io
 import json
@@ -26,7 +25,7 @@ sys.path.insert(0, str(TOOLS))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import grade  # noqa: E402
 import make_kit  # noqa: E402
-from grade_fixture import (FIXTURE_HEADER, HIDDEN_SUITE, dedent, have_build_tools,  # noqa: E402
+from grade_fixture import (scanner_off, FIXTURE_HEADER, HIDDEN_SUITE, dedent, have_build_tools,  # noqa: E402
                            make_fixture_reference, run_as_arguments, student_copy, temporary_folder)
 from grading import splice  # noqa: E402
 from grading.common import parse_stages  # noqa: E402
@@ -461,17 +460,6 @@ STUDENT_HEADER = FIXTURE_HEADER.replace(
     "return *p;", "const volatile int* none = nullptr;\n        if (*p == 7)\n            return *none;\n"
                   "        return *p;").replace(
     "return n;", "volatile bool forever = n == 0;\n        while (forever) {\n        }\n        return n;")
-
-
-@contextlib.contextmanager
-def scanner_off():
-    """The region scanner (splice.check_body) accepts everything, as in the attack suite."""
-    saved = splice.check_body
-    splice.check_body = lambda *args, **kwargs: ""
-    try:
-        yield
-    finally:
-        splice.check_body = saved
 
 
 @unittest.skipUnless(have_build_tools(), "needs cmake, ninja and a C++ compiler")

@@ -35,8 +35,7 @@ sys.path.insert(0, str(TOOLS))
 sys.path.insert(0, str(TOOLS / "tests"))
 import grade  # noqa: E402
 import make_kit  # noqa: E402
-from grading import splice  # noqa: E402
-from grade_fixture import have_build_tools, private_copy, run_as_arguments, temporary_folder  # noqa: E402
+from grade_fixture import have_build_tools, private_copy, run_as_arguments, scanner_off, temporary_folder  # noqa: E402
 
 SECRET = "hidden-suite-secret-5c1e9"
 HIDDEN_SUITE = f"""// {SECRET}: no submission may read this
@@ -63,17 +62,6 @@ def sphere_region(text: str):
     begin = next(k for k, l in enumerate(lines) if "RT_EXERCISE_BEGIN(stage03" in l)
     end = next(k for k in range(begin, len(lines)) if "RT_EXERCISE_END" in lines[k])
     return lines, begin, end
-
-
-@contextlib.contextmanager
-def scanner_off():
-    """The region scanner accepts everything: the judge alone must hold."""
-    saved = splice.check_body
-    splice.check_body = lambda *args, **kwargs: ""
-    try:
-        yield
-    finally:
-        splice.check_body = saved
 
 
 @unittest.skipUnless(have_build_tools(), "needs cmake, ninja and a C++ compiler")
