@@ -29,14 +29,14 @@
 #include <string>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/camera.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/offset.hpp>
-#include <rt/scene.hpp>
-#include <rt/shadows.hpp>
-#include <rt/spawn.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/shading/shadows.hpp>
+#include <rt/intersection/spawn.hpp>
 
 #include "bench.hpp"
 

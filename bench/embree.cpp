@@ -35,14 +35,14 @@
 #include <string>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
-#include <rt/spawn.hpp>
-#include <rt/watertight.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/watertight.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/accelerator.hpp>
+#include <rt/bvh/accelerator.hpp>
 #endif
 
 #include "bench.hpp"
@@ -261,7 +261,7 @@ int main(int argc, char** argv)
                                     " primary rays; shadow rays from their hits; " +
                                     std::to_string(incoherent_count) + " incoherent rays");
 #if !defined(RT_BENCH_HAS_ACCELERATOR)
-            table->note("rt", "rt::accelerator (include/rt/accelerator.hpp) not present in this tree: rt columns are nan");
+            table->note("rt", "rt::accelerator (include/rt/bvh/accelerator.hpp) not present in this tree: rt columns are nan");
 #endif
         }
 

@@ -23,17 +23,17 @@
 #include <variant>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/camera.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/raytracer.hpp>
-#include <rt/renderer.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/shading/raytracer.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "bench.hpp"
 #if defined(RT_BENCH_HAS_EMBREE)
-#include <rt/mesh.hpp>
-#include <rt/triangle_shape.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/scene/triangle_shape.hpp>
 
 #include "embree_scene.hpp"
 #endif

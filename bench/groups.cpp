@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/camera.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
 
 #include "bench.hpp"
 

@@ -1,5 +1,5 @@
 // Experiment 8: path tracing, noise against time for each way of sampling
-// the light (stage 11, include/rt/path_tracer.hpp).
+// the light (stage 11, include/rt/path_tracing/path_tracer.hpp).
 //
 // The Cornell box of ../shared (scenes/cornell.scene, its own light only) is
 // rendered by rt::render_paths on one thread with each strategy (uniform and
@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/emitters.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/radiance.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/rendering/radiance.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "bench.hpp"
 

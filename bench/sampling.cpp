@@ -15,7 +15,7 @@
 //
 // One more curve, box filter only: "student", the stage-02 exercises
 // (rt::jittered_samples with n x n = spp samples per pixel, rt::box_reconstruct;
-// include/rt/pixel_sampling.hpp), in a plain loop over the pixels on one
+// include/rt/camera/pixel_sampling.hpp), in a plain loop over the pixels on one
 // thread. It estimates what the library's jittered sampler with the box filter
 // estimates, so its curve should lie on that one, slope -3/4. (Benchmarks are
 // built from the reference solution only; a student kit has none.)
@@ -39,18 +39,18 @@
 #include <string>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/pixel_sampling.hpp>
-#include <rt/random.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/camera/pixel_sampling.hpp>
+#include <rt/core/random.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/accelerator.hpp>
-#include <rt/radiance.hpp>
-#include <rt/raytracer.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/rendering/radiance.hpp>
+#include <rt/shading/raytracer.hpp>
+#include <rt/input/scene_loader.hpp>
 #endif
 
 #include "bench.hpp"

@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include <rt/random.hpp>
-#include <rt/sphere.hpp>
-#include <rt/sphere_stable.hpp>
+#include <rt/core/random.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/intersection/sphere_stable.hpp>
 
 #include "bench.hpp"
 

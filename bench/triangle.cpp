@@ -32,9 +32,9 @@
 #include <utility>
 #include <vector>
 
-#include <rt/random.hpp>
-#include <rt/triangle.hpp>
-#include <rt/watertight.hpp>
+#include <rt/core/random.hpp>
+#include <rt/intersection/triangle.hpp>
+#include <rt/intersection/watertight.hpp>
 
 #include "bench.hpp"
 

@@ -35,7 +35,7 @@ if(RT_BUILD_TESTS)
   rt_require(doctest doctest::doctest doctest-dev doctest doctest)
 endif()
 
-# --- decimal numbers: fast_float or std::from_chars (include/rt/decimal_text.hpp)
+# --- decimal numbers: fast_float or std::from_chars (include/rt/core/decimal_text.hpp)
 # rt reads every number of its files and options with fast_float where it is
 # found, otherwise with std::from_chars for double, which libc++ before 20
 # (macOS) lacks: there fast_float is required. The header decides with

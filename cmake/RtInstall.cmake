@@ -5,6 +5,7 @@ include(CMakePackageConfigHelpers)
 
 install(TARGETS rt EXPORT rtTargets)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/include/rt" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/compat/rt" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}") # old paths, 0.2 only
 install(FILES "${PROJECT_SOURCE_DIR}/third_party/stb/stb_image_write.h"
               "${PROJECT_SOURCE_DIR}/third_party/stb/LICENSE"
         DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/stb")

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include <rt/scene_loader.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "fuzz_support.hpp"
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include <rt/scene_loader.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "fuzz_support.hpp"
 

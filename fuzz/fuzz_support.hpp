@@ -14,8 +14,8 @@
 #include <string>
 #include <system_error>
 
-#include <rt/error.hpp>
-#include <rt/text_file.hpp> // rt::detail::utf8_length
+#include <rt/core/error.hpp>
+#include <rt/input/text_file.hpp> // rt::detail::utf8_length
 
 namespace fuzz {
 

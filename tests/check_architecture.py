@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Holds the code to what docs/architecture.md, bvh/bvh.hpp and the README say of it.
 
-- Every header under include/rt belongs to exactly one group of the layer
-  table, and includes (with #include "...") only headers of the groups its row
-  allows.
-- The teaching path of docs/architecture.md names, with its stage, every
-  header that holds an exercise region (RT_EXERCISE_BEGIN(stageNN: ...)), and
-  no other.
+- include/rt holds folders only, besides rt.hpp, and the layer table has one
+  row per folder. A header's layer is its folder: it includes (with
+  #include "...") only headers of its folder and of the folders its row allows.
+- The teaching path of docs/architecture.md, and its stage table, name with
+  its stage every header that holds an exercise region
+  (RT_EXERCISE_BEGIN(stageNN: ...)), and no other.
 - The folder map at the top of include/rt/bvh/bvh.hpp lists every file of
   include/rt/bvh, and only those.
 - The README's "For developers" paragraph names every preset .ci/run runs,
@@ -27,52 +27,59 @@ def main() -> int:
     if start is None:
         print(f"{page}: expected the '<!-- architecture:' marker before the layer table, found none")
         return 1
-    group_of, allowed, problems = {}, {}, []
+    allowed, problems = {}, []
     for number, line in enumerate(lines[start + 1:], start + 2):
         if not line.startswith("|"):
             if allowed:
                 break
             continue
         cells = [c.strip() for c in line.strip("|").split("|")]
-        if len(cells) != 3 or cells[0] in ("group", "") or set(cells[0]) <= {"-"}:
+        if len(cells) != 3 or not cells[0].startswith("`"):
             continue
-        group, headers, may = cells
-        allowed[group] = set(may.split())
-        for h in headers.split():
-            if h in group_of:
-                problems.append(f"{page}:{number}: expected each header in one group, found {h} in "
-                                f"{group_of[h]} and {group}")
-            group_of[h] = group
+        group = cells[0].strip("`").rstrip("/")
+        if group in allowed:
+            problems.append(f"{page}:{number}: expected one row per folder, found `{group}/` twice")
+        allowed[group] = set(cells[2].replace("`", "").replace("/", " ").split())
     for group, may in allowed.items():
         for g in may - set(allowed):
-            problems.append(f"{page}: group {group} may include '{g}', which is no group of the table")
+            problems.append(f"{page}: the row of `{group}/` may include '{g}', which has no row of the table")
+    for entry in sorted(include.iterdir()):
+        if entry.is_dir() and entry.name not in allowed:
+            problems.append(f"{entry}: expected a row of docs/architecture.md's layer table for this folder, "
+                            f"found none; add one saying what it holds and what it may include")
+        elif entry.is_file() and entry.name != "rt.hpp":
+            problems.append(f"{entry}: expected only folders and rt.hpp in include/rt, found a file; "
+                            f"move it to the folder of its layer")
+    for group in sorted(set(allowed) - {"rt.hpp"}):
+        if not (include / group).is_dir():
+            problems.append(f"{page}: the table has a row for `{group}/`, which is no folder of include/rt")
+
+    def group_of(rel: pathlib.PurePath) -> str:
+        return rel.parts[0] if len(rel.parts) > 1 else rel.name
+
     headers = sorted(p for p in include.rglob("*.hpp"))
     for path in headers:
-        name = path.relative_to(include).with_suffix("").as_posix()
-        if name not in group_of:
-            problems.append(f"{path}: expected a row of docs/architecture.md's layer table to list "
-                            f"'{name}', found none; add it to the group of its concept")
-            continue
+        mine = group_of(path.relative_to(include))
+        if mine not in allowed:
+            continue  # reported above, as a folder missing from the table
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-            m = re.match(r'\s*#\s*include\s+"([^"]+)\.hpp"', line)
+            m = re.match(r'\s*#\s*include\s+"([^"]+\.hpp)"', line)
             if not m:
                 continue
-            target = (path.parent / (m.group(1) + ".hpp")).resolve().relative_to(include.resolve())
-            target = target.with_suffix("").as_posix()
-            if target not in group_of:
-                continue  # reported above, as a header missing from the table
-            mine, theirs = group_of[name], group_of[target]
-            if theirs not in allowed[mine]:
-                problems.append(f"{path}:{number}: a {mine} header includes {target}.hpp ({theirs}); "
+            target = (path.parent / m.group(1)).resolve()
+            if not target.is_file():
+                problems.append(f"{path}:{number}: includes {m.group(1)}, which is no file")
+                continue
+            rel = target.relative_to(include.resolve())
+            theirs = group_of(rel)
+            if theirs != mine and theirs not in allowed[mine]:
+                problems.append(f"{path}:{number}: a {mine}/ header includes {rel.as_posix()} ({theirs}/); "
                                 f"expected only {', '.join(sorted(allowed[mine]))}: a header never reaches up "
                                 f"(docs/architecture.md)")
-    listed = set(group_of) - {p.relative_to(include).with_suffix("").as_posix() for p in headers}
-    for h in sorted(listed):
-        problems.append(f"{page}: the table lists '{h}', which is no header under include/rt")
     problems += teaching_path(root) + bvh_map(root) + ci_claims(root)
     for p in problems:
         print(p)
-    print(f"{len(headers)} headers in {len(allowed)} groups; the teaching path, the bvh map and the CI "
+    print(f"{len(headers)} headers in {len(allowed)} folders; the teaching path, the bvh map and the CI "
           f"claims checked; {len(problems)} problem(s)")
     return 1 if problems else 0
 
@@ -105,6 +112,24 @@ def teaching_path(root: pathlib.Path) -> list:
                             f"{', '.join(f'{s:02d}' for s in sorted(stages))} (its exercise markers), found "
                             + (f"stage(s) {', '.join(f'{s:02d}' for s in sorted(listed[header]))}" if header in listed
                                else "it missing"))
+    table = re.search(r"^## Where a stage's files are\n(.*?)(?=^#)", text, re.S | re.M)
+    if not table:
+        problems.append(f"{page}: expected a section \"## Where a stage's files are\" with a row per stage, found none")
+    else:
+        rows = {}
+        for line in table.group(1).splitlines():
+            cells = [c.strip() for c in line.strip("|").split("|")]
+            if line.startswith("|") and cells[0].isdigit():
+                rows[int(cells[0])] = set(re.findall(r"`([\w/]+\.hpp)`", cells[1]))
+        by_stage = {}
+        for header, stages in marked.items():
+            for s in stages:
+                by_stage.setdefault(s, set()).add(header)
+        for s in sorted(set(rows) | set(by_stage)):
+            if rows.get(s) != by_stage.get(s):
+                problems.append(f"{page}: expected the stage table's row {s:02d} to name "
+                                f"{' '.join(sorted(by_stage.get(s, ()))) or 'no header'} (the exercise markers), "
+                                f"found {' '.join(sorted(rows.get(s, ()))) or 'no row'}")
     for header in sorted(set(listed) - set(marked)):
         problems.append(f"{page}: the teaching path lists `{header}`, which holds no exercise region; "
                         f"move it to the robust and fast path or drop it")

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 namespace {
 

@@ -3,7 +3,7 @@
 // to them (library_watertight.cpp, and docs_figures.cpp for the stage-04
 // page's figures: both run icosphere_edge_leaks).
 //
-// The watertight test (Woop, Benthin, Wald 2013; include/rt/watertight.hpp)
+// The watertight test (Woop, Benthin, Wald 2013; include/rt/intersection/watertight.hpp)
 // computes the edge function of an edge shared by two triangles from the same
 // two sheared corners in both, as a b - c d in one and c d - a b in the other:
 // exact negatives, so no ray passes between them. A compiler that contracts
@@ -21,11 +21,11 @@
 #include <utility>
 #include <vector>
 
-#include <rt/mesh.hpp>
-#include <rt/ray.hpp>
-#include <rt/triangle_shape.hpp>
-#include <rt/vec.hpp>
-#include <rt/watertight.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/triangle_shape.hpp>
+#include <rt/core/vec.hpp>
+#include <rt/intersection/watertight.hpp>
 
 #include "test_scenes.hpp" // icosphere
 

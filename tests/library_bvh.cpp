@@ -1,5 +1,5 @@
-// library_bvh.cpp - the library's accelerator (include/rt/bvh.hpp,
-// include/rt/accelerator.hpp): the slab test with Ize's factor (Ize, "Robust BVH
+// library_bvh.cpp - the library's accelerator (include/rt/bvh/bvh.hpp,
+// include/rt/bvh/accelerator.hpp): the slab test with Ize's factor (Ize, "Robust BVH
 // ray traversal", JCGT 2013), BVH build (the same tree for any thread count,
 // spatial splits that never cut a triangle's piece) and traversal (the same
 // hits as the flat list, on random rays, through closed meshes and on the
@@ -29,13 +29,13 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/bvh.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/bvh/bvh.hpp>
 #include <rt/bvh/hit_fill.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
-#include <rt/spawn.hpp>
-#include <rt/watertight.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/watertight.hpp>
 
 namespace {
 

@@ -1,4 +1,4 @@
-// library_camera_check.cpp - rt::make_ray_generator (include/rt/camera.hpp)
+// library_camera_check.cpp - rt::make_ray_generator (include/rt/camera/camera.hpp)
 // refuses a camera built in code that a scene file could not hold: an rt::error
 // in words, never rays of NaN. It calls the stage-02 frame: in a kit where that
 // exercise is not done yet, its rt::exercise_not_done ends the case, which the
@@ -8,8 +8,8 @@
 #include <cmath>
 #include <string>
 
-#include <rt/camera.hpp>
-#include <rt/error.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/error.hpp>
 
 namespace {
 

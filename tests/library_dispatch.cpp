@@ -28,9 +28,9 @@
 #include <type_traits>
 #include <vector>
 
-#include <rt/accelerator.hpp>
+#include <rt/bvh/accelerator.hpp>
 #include <rt/bvh/builtins.hpp>
-#include <rt/obj_loader.hpp>
+#include <rt/input/obj_loader.hpp>
 
 namespace {
 

@@ -12,16 +12,16 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/error.hpp>
-#include <rt/glossy.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/radiance.hpp>
-#include <rt/random.hpp>
-#include <rt/renderer.hpp>
-#include <rt/scene_loader.hpp>
-#include <rt/shading.hpp>
-#include <rt/thin_lens.hpp>
+#include <rt/core/error.hpp>
+#include <rt/shading/glossy.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/rendering/radiance.hpp>
+#include <rt/core/random.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/input/scene_loader.hpp>
+#include <rt/shading/shading.hpp>
+#include <rt/camera/thin_lens.hpp>
 
 namespace {
 

@@ -1,7 +1,7 @@
 // library_image_output.cpp - the parts of stage 08's output that are library
 // code, not exercises: exposure, AOVs in 8 bits, the names of tone maps,
-// samplers and filters, PFM files, and atomic writes (include/rt/image_io.hpp,
-// include/rt/atomic_file.hpp). Expected values are closed forms worked out by
+// samplers and filters, PFM files, and atomic writes (include/rt/output/image_io.hpp,
+// include/rt/system/atomic_file.hpp). Expected values are closed forms worked out by
 // hand in each case. No exercise is called.
 #include "rt_doctest.hpp"
 
@@ -24,21 +24,21 @@
 #include <thread>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/encoding.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/image.hpp>
-#include <rt/encoded_output.hpp>
-#include <rt/image_io.hpp>
-#include <rt/progress.hpp>
-#include <rt/random.hpp>
-#include <rt/ray.hpp>
-#include <rt/aov.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/tonemap.hpp>
-#include <rt/transfer.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/core/image.hpp>
+#include <rt/output/encoded_output.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/rendering/progress.hpp>
+#include <rt/core/random.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/output/aov.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/output/tonemap.hpp>
+#include <rt/output/transfer.hpp>
 
 namespace {
 

@@ -1,4 +1,4 @@
-// library_obj_check.cpp - the OBJ and MTL loader (include/rt/obj_loader.hpp):
+// library_obj_check.cpp - the OBJ and MTL loader (include/rt/input/obj_loader.hpp):
 // a mesh keeps only what its file gives, faces with negative indices and
 // polygons, MTL colors per face, the Cornell box, and malformed or missing
 // files as one-line errors with file:line:col. No exercise is called.
@@ -18,13 +18,13 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/bvh.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
-#include <rt/path_text.hpp>
-#include <rt/spawn.hpp>
-#include <rt/watertight.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/bvh/bvh.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/system/path_text.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/watertight.hpp>
 
 namespace {
 

@@ -1,13 +1,13 @@
 // library_offset.cpp - the robust ray origin of Wachter and Binder (Ray Tracing
-// Gems ch. 6, include/rt/offset.hpp) that stages 06 and 07 use: it lies on the
+// Gems ch. 6, include/rt/intersection/offset.hpp) that stages 06 and 07 use: it lies on the
 // normal's side of the surface and moves the point a few ulps only.
 #include "rt_doctest.hpp"
 
 #include <cmath>
 #include <limits>
 
-#include <rt/offset.hpp>
-#include <rt/vec.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/core/vec.hpp>
 
 TEST_CASE("the robust origin lies on the normal's side of the surface, and moves a few ulps only")
 {

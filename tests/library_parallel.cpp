@@ -10,7 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include <rt/parallel.hpp>
+#include <rt/system/parallel.hpp>
 
 #include "rt_doctest.hpp"
 

@@ -1,5 +1,5 @@
 // library_path_tracing.cpp - the path tracer of stage 11 as a whole
-// (include/rt/path_tracer.hpp), on scenes built in code (tests/path_scenes.hpp):
+// (include/rt/path_tracing/path_tracer.hpp), on scenes built in code (tests/path_scenes.hpp):
 // the four strategies converge to the same image; Russian roulette changes the
 // noise, not the mean; the error of a mean falls as N^-1/2; the image is the
 // same bit for bit whatever the thread count, with and without adaptive
@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/emitters.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/random.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/core/random.hpp>
 
 #include "path_scenes.hpp"
 

@@ -12,8 +12,8 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/refraction.hpp>
-#include <rt/vec.hpp>
+#include <rt/shading/refraction.hpp>
+#include <rt/core/vec.hpp>
 
 namespace {
 

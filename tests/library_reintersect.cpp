@@ -14,8 +14,8 @@
 // (a ray into a sphere hits it again, truly).
 //
 // The renderer's shadow and mirror rays are rt::spawn_ray_to and rt::spawn_ray
-// (include/rt/spawn.hpp): the tests assert they never fail, in float and in
-// double. The Ray Tracing Gems offset (include/rt/offset.hpp), which stage 06
+// (include/rt/intersection/spawn.hpp): the tests assert they never fail, in float and in
+// double. The Ray Tracing Gems offset (include/rt/intersection/offset.hpp), which stage 06
 // teaches, is counted too: it fails on points whose coordinates have mixed
 // magnitudes, and the last case shows one such triangle.
 //
@@ -35,12 +35,12 @@
 #include <string>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/light.hpp>
-#include <rt/offset.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
-#include <rt/spawn.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/intersection/spawn.hpp>
 
 namespace {
 

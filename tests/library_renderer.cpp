@@ -1,4 +1,4 @@
-// library_renderer.cpp - the renderer (include/rt/renderer.hpp) and what it
+// library_renderer.cpp - the renderer (include/rt/rendering/renderer.hpp) and what it
 // uses: the pcg32 generator, samplers, reconstruction filters, tiles and
 // threads (bit-identical images for any thread count), crops, progress, the
 // render options' checks, camera statements and the framing of a bare OBJ.
@@ -26,21 +26,21 @@
 #include <thread>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/decimal_text.hpp>
-#include <rt/encoding.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/image.hpp>
-#include <rt/image_io.hpp>
-#include <rt/progress.hpp>
-#include <rt/random.hpp>
-#include <rt/ray.hpp>
-#include <rt/render_setup.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/tonemap.hpp>
-#include <rt/transfer.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/core/decimal_text.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/core/image.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/rendering/progress.hpp>
+#include <rt/core/random.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/rendering/render_setup.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/output/tonemap.hpp>
+#include <rt/output/transfer.hpp>
 
 namespace {
 

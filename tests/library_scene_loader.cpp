@@ -1,4 +1,4 @@
-// library_scene_loader.cpp - the scene file reader (include/rt/scene_loader.hpp)
+// library_scene_loader.cpp - the scene file reader (include/rt/input/scene_loader.hpp)
 // around the stage-01 exercise: defaults for what a file leaves out, shapes,
 // materials and lights in file order, comments and quoted paths, a missing
 // file as a clear error. No exercise is called (these scenes state no camera
@@ -8,8 +8,8 @@
 #include <string>
 #include <variant>
 
-#include <rt/error.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/core/error.hpp>
+#include <rt/input/scene_loader.hpp>
 
 namespace {
 

@@ -1,5 +1,5 @@
 // library_shadows_fixed_epsilon.cpp - the textbook's fixed epsilon
-// (rt::light_visible_fixed_epsilon, include/rt/shadows_fixed_epsilon.hpp) fails
+// (rt::light_visible_fixed_epsilon, include/rt/shading/shadows_fixed_epsilon.hpp) fails
 // where stage 06's robust offset holds: over the scales and offsets of the
 // stage-06 acne table (tests/shadow_acne.hpp), it shows acne. A property of
 // the library's comparison method, so it lives here and no student's code is

@@ -1,5 +1,5 @@
 // library_slab.cpp - the library's robust slab test, rt::hit_box_robust
-// (include/rt/slab.hpp), against the textbook form: the stage-04 exercise
+// (include/rt/intersection/slab.hpp), against the textbook form: the stage-04 exercise
 // hit_box_textbook, whose failures are asserted in the reference only (in a
 // student kit those cases skip, with the reason: slab_cases.hpp).
 //
@@ -21,9 +21,9 @@
 #include <type_traits>
 #include <vector>
 
-#include <rt/aabb.hpp>
-#include <rt/ray.hpp>
-#include <rt/slab.hpp>
+#include <rt/core/aabb.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/intersection/slab.hpp>
 
 namespace {
 

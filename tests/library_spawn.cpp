@@ -1,4 +1,4 @@
-// library_spawn.cpp - rays spawned from a hit (include/rt/spawn.hpp, after
+// library_spawn.cpp - rays spawned from a hit (include/rt/intersection/spawn.hpp, after
 // Pharr, Jakob, Humphreys, PBR 3rd ed., sec. 3.9.5): a spawned ray never hits
 // the surface it left at any scale, while naive starts do; a sliver just in
 // front still blocks it; a ray leaving a sphere does not re-hit it. The
@@ -21,12 +21,12 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/bvh.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
-#include <rt/spawn.hpp>
-#include <rt/watertight.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/bvh/bvh.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/watertight.hpp>
 
 namespace {
 

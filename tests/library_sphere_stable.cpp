@@ -1,5 +1,5 @@
 // library_sphere_stable.cpp - the library's ray-sphere method, rt::hit_sphere
-// (include/rt/sphere_stable.hpp: the stable method of Ray Tracing Gems ch. 7),
+// (include/rt/intersection/sphere_stable.hpp: the stable method of Ray Tracing Gems ch. 7),
 // against the textbook quadratic.
 //
 // The contract every ray-sphere function keeps (tests/sphere_contract.hpp,
@@ -30,10 +30,10 @@
 #include <string>
 #include <vector>
 
-#include <rt/hit_record.hpp>
-#include <rt/ray.hpp>
-#include <rt/sphere.hpp>
-#include <rt/sphere_stable.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/intersection/sphere_stable.hpp>
 
 namespace {
 

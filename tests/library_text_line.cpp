@@ -1,5 +1,5 @@
 // library_text_line.cpp - the one tokenizer of scene, OBJ and MTL files
-// (include/rt/text_line.hpp, text_file.hpp): numbers read alike by every
+// (include/rt/input/text_line.hpp, text_file.hpp): numbers read alike by every
 // reader and every parser (decimal_text.hpp), correctly rounded to rt::real
 // and whatever the locale, columns across continued lines, scene tokens with
 // quotes and comments. No exercise is called.
@@ -20,11 +20,11 @@
 #include <type_traits>
 #include <vector>
 
-#include <rt/decimal_text.hpp>
-#include <rt/obj_line.hpp>
-#include <rt/scene_statement.hpp>
-#include <rt/text_file.hpp>
-#include <rt/text_line.hpp>
+#include <rt/core/decimal_text.hpp>
+#include <rt/input/obj_line.hpp>
+#include <rt/input/scene_statement.hpp>
+#include <rt/input/text_file.hpp>
+#include <rt/input/text_line.hpp>
 
 namespace {
 

@@ -1,4 +1,4 @@
-// library_triangulate.cpp - rt::triangulate_polygon (include/rt/triangulate.hpp):
+// library_triangulate.cpp - rt::triangulate_polygon (include/rt/input/triangulate.hpp):
 // the robust orientation test, and the promise that every simple polygon,
 // convex or concave, in any plane, gives n - 2 triangles inside it whose
 // areas add up to its area.
@@ -15,7 +15,7 @@
 
 #include <tiny_obj_loader.h>
 
-#include <rt/triangulate.hpp>
+#include <rt/input/triangulate.hpp>
 
 namespace {
 

@@ -1,5 +1,5 @@
 // library_watertight.cpp - the library's triangle test, rt::hit_triangle
-// (include/rt/watertight.hpp: the watertight test of Woop, Benthin, Wald 2013),
+// (include/rt/intersection/watertight.hpp: the watertight test of Woop, Benthin, Wald 2013),
 // its SIMD leaves and its hit-point error bound.
 //
 // Watertightness is a property: a closed mesh seen from inside is hit by every
@@ -27,14 +27,14 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/bvh.hpp>
-#include <rt/mesh_hit.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
-#include <rt/spawn.hpp>
-#include <rt/triangle.hpp>
-#include <rt/watertight.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/bvh/bvh.hpp>
+#include <rt/intersection/mesh_hit.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/triangle.hpp>
+#include <rt/intersection/watertight.hpp>
 
 namespace {
 

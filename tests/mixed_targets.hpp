@@ -12,9 +12,9 @@
 #include <typeinfo>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
 
 namespace rt_test {
 

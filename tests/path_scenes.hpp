@@ -13,11 +13,11 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/accelerator.hpp>
-#include <rt/emitters.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
 
 namespace path_scenes {
 

@@ -15,16 +15,16 @@
 #include <cstdio>
 #include <string>
 
-#include <rt/accelerator.hpp>
-#include <rt/hit_record.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/offset.hpp>
-#include <rt/random.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
-#include <rt/spawn.hpp>
-#include <rt/vec.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/core/random.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/core/vec.hpp>
 
 namespace rt_test::reintersect {
 
@@ -158,7 +158,7 @@ void spawn_from(const rt::accelerator& world, const rt::ray& primary, const rt::
             bulb.position = target;
             const rt::light_sample sample = rt::sample_light(bulb, rec.point);
             if (glm::dot(rec.geometric_normal, sample.l) > 0 && sample.distance > 0) {
-                // what light_visible does (include/rt/shadows.hpp)
+                // what light_visible does (include/rt/shading/shadows.hpp)
                 const rt::ray shadow = rt::spawn_ray_to(rec, rec.point + sample.distance * sample.l);
                 rows[shadow_robust].add(world.any_hit(shadow, 0, 1 - rt::shadow_epsilon));
                 // what it did before issue 19
@@ -167,7 +167,7 @@ void spawn_from(const rt::accelerator& world, const rt::ray& primary, const rt::
             }
         }
 
-        // a mirror ray, as ray_color makes it (reflect, include/rt/raytracer.hpp,
+        // a mirror ray, as ray_color makes it (reflect, include/rt/shading/raytracer.hpp,
         // written out: the library suites call no exercise), of the primary ray
         // and of random rays arriving on the side the primary ray came from
         vec3 incoming = j == 0 ? primary.direction : random_direction(g);

@@ -29,10 +29,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <rt/atomic_file.hpp>
-#include <rt/image.hpp>
-#include <rt/image_io.hpp>
-#include <rt/os_error.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/core/image.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/system/os_error.hpp>
 
 namespace fs = std::filesystem;
 

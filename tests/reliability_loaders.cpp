@@ -20,12 +20,12 @@
 #include <variant>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/error.hpp>
-#include <rt/image_io.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/scene_loader.hpp>
-#include <rt/text_file.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/core/error.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/input/scene_loader.hpp>
+#include <rt/input/text_file.hpp>
 
 namespace {
 

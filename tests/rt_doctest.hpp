@@ -24,11 +24,11 @@
 #include <type_traits>
 #include <utility>
 
-#include <rt/aabb.hpp>
-#include <rt/camera_model.hpp>
-#include <rt/hit_record.hpp>
-#include <rt/ray.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/aabb.hpp>
+#include <rt/scene/camera_model.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/core/vec.hpp>
 
 namespace rt_doctest {
 

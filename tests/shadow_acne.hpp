@@ -17,14 +17,14 @@
 #include <cmath>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/hit_record.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/scene.hpp>
-#include <rt/shadows.hpp>
-#include <rt/shadows_fixed_epsilon.hpp>
-#include <rt/vec.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/shading/shadows.hpp>
+#include <rt/shading/shadows_fixed_epsilon.hpp>
+#include <rt/core/vec.hpp>
 
 namespace rt_test {
 

@@ -1,10 +1,10 @@
 // slab_cases.hpp - the rays on which the textbook slab test fails and the
-// robust one holds (rt::hit_box_robust, include/rt/slab.hpp), counted the same
+// robust one holds (rt::hit_box_robust, include/rt/intersection/slab.hpp), counted the same
 // way by the library suite (library_slab.cpp) and by the page's figures
 // (docs_figures.cpp, docs/stages/04-going-further.md).
 //
 // The textbook method is the stage-04 exercise itself, rt::hit_box_textbook
-// (include/rt/slab.hpp), whose reference body is the book's form (Fundamentals
+// (include/rt/intersection/slab.hpp), whose reference body is the book's form (Fundamentals
 // of Computer Graphics, 4th ed., sec. 12.3.1): no copy of the answer sits
 // outside its exercise region. Its failures are asserted in the reference
 // only; in a student kit the textbook's side says SKIPPED, with the reason
@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include <rt/aabb.hpp>
-#include <rt/ray.hpp>
-#include <rt/slab.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/aabb.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/intersection/slab.hpp>
+#include <rt/core/vec.hpp>
 
 #include "textbook_methods.hpp"
 

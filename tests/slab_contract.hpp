@@ -10,8 +10,8 @@
 #include <cmath>
 #include <limits>
 
-#include <rt/aabb.hpp>
-#include <rt/ray.hpp>
+#include <rt/core/aabb.hpp>
+#include <rt/core/ray.hpp>
 
 namespace rt_test {
 

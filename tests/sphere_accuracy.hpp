@@ -10,7 +10,7 @@
 // same float inputs, whose error is far below one ulp of real).
 //
 // The textbook method measured here is the stage-03 exercise itself,
-// rt::hit_sphere_textbook (include/rt/sphere.hpp), whose reference body is the
+// rt::hit_sphere_textbook (include/rt/intersection/sphere.hpp), whose reference body is the
 // textbook formula: no copy of the answer sits outside its exercise region. In
 // a kit where it is not written yet the tables measure the stable method alone
 // (textbook_not_done); what is asserted about the textbook's side, and where,
@@ -30,13 +30,13 @@
 #include <type_traits>
 #include <vector>
 
-#include <rt/hit_record.hpp>
-#include <rt/error.hpp>
-#include <rt/ray.hpp>
-#include <rt/sphere.hpp>
-#include <rt/sphere_shape.hpp>
-#include <rt/sphere_stable.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/error.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/scene/sphere_shape.hpp>
+#include <rt/intersection/sphere_stable.hpp>
+#include <rt/core/vec.hpp>
 
 #include "textbook_methods.hpp"
 
@@ -99,7 +99,7 @@ inline double error_ulps(real got, wide exact)
 }
 
 /// The stable method as the chapter gives it, with c = f.f - R^2 in real: the
-/// library forms c in a wider type instead (include/rt/sphere.hpp), and the
+/// library forms c in a wider type instead (include/rt/intersection/sphere.hpp), and the
 /// ground table shows why. Only t is needed here.
 inline bool hit_sphere_chapter_c_in_real(const rt::sphere& s, const rt::ray& r, real tmin, real tmax, rt::hit_record& rec)
 {

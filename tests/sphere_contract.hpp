@@ -19,10 +19,10 @@
 #include <initializer_list>
 #include <string>
 
-#include <rt/hit_record.hpp>
-#include <rt/ray.hpp>
-#include <rt/sphere_shape.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/sphere_shape.hpp>
+#include <rt/core/vec.hpp>
 
 namespace rt_test {
 

@@ -13,9 +13,9 @@
 #include <variant>
 #include <vector>
 
-#include <rt/camera_statement.hpp>
-#include <rt/camera_text.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/input/camera_statement.hpp>
+#include <rt/camera/camera_text.hpp>
+#include <rt/input/scene_loader.hpp>
 
 namespace {
 

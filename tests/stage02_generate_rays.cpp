@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include <rt/byte_level.hpp>
-#include <rt/camera.hpp>
-#include <rt/image_io.hpp>
-#include <rt/pixel_sampling.hpp>
-#include <rt/random.hpp>
-#include <rt/ray_image.hpp>
+#include <rt/core/byte_level.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/camera/pixel_sampling.hpp>
+#include <rt/core/random.hpp>
+#include <rt/camera/ray_image.hpp>
 
 namespace {
 
@@ -403,7 +403,7 @@ TEST_CASE("generate_ray on its own: eq. 4.1 from a generator built by hand (no c
     CHECK(o.direction == rt::vec3(-1, 0, 0));
 }
 
-// ---- sampling: several rays per pixel (include/rt/pixel_sampling.hpp) ----
+// ---- sampling: several rays per pixel (include/rt/camera/pixel_sampling.hpp) ----
 // Pixel (i, j) is the square [i, i + 1] x [j, j + 1] of film positions; n x n
 // jittered samples put one uniform point in each of its n x n cells (FCG 4th
 // ed., sec. 13.4.1); the box reconstruction averages the samples inside it.

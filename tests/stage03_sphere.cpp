@@ -1,5 +1,5 @@
 // Stage 03 - ray-sphere intersection: the student's textbook quadratic,
-// rt::hit_sphere_textbook (include/rt/sphere.hpp), judged by its contract.
+// rt::hit_sphere_textbook (include/rt/intersection/sphere.hpp), judged by its contract.
 //
 // Every case is a property a correct answer has (tests/sphere_contract.hpp,
 // the same checks the library's stable method passes in
@@ -15,7 +15,7 @@
 #include "rt_doctest.hpp"
 #include "sphere_contract.hpp"
 
-#include <rt/sphere.hpp>
+#include <rt/intersection/sphere.hpp>
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Stage 04 - groups: the ray-box slab test and a hierarchy of boxes over the
-// scene's primitives (include/rt/slab.hpp, include/rt/groups.hpp).
+// scene's primitives (include/rt/intersection/slab.hpp, include/rt/intersection/groups.hpp).
 //
 // The three exercises, each by its contract:
 //  - hit_box_textbook: hits and misses worked out by hand (axis-parallel
@@ -38,10 +38,10 @@
 #include <variant>
 #include <vector>
 
-#include <rt/groups.hpp>
-#include <rt/hit_list.hpp>
-#include <rt/scene.hpp>
-#include <rt/slab.hpp>
+#include <rt/intersection/groups.hpp>
+#include <rt/intersection/hit_list.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/intersection/slab.hpp>
 
 namespace {
 

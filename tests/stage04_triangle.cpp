@@ -28,13 +28,13 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/hit_list.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/offset.hpp>
-#include <rt/spawn.hpp>
-#include <rt/triangle.hpp>
-#include <rt/watertight.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/intersection/hit_list.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/intersection/offset.hpp>
+#include <rt/intersection/spawn.hpp>
+#include <rt/intersection/triangle.hpp>
+#include <rt/intersection/watertight.hpp>
 
 namespace {
 

@@ -13,10 +13,10 @@
 #include <sstream>
 #include <string>
 
-#include <rt/hit_record.hpp>
-#include <rt/scene.hpp>
-#include <rt/shading.hpp>
-#include <rt/sphere_stable.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/shading/shading.hpp>
+#include <rt/intersection/sphere_stable.hpp>
 
 namespace {
 

@@ -14,11 +14,11 @@
 #include <cstdio>
 #include <string>
 
-#include <rt/accelerator.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/scene.hpp>
-#include <rt/shadows.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/shading/shadows.hpp>
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include <rt/accelerator.hpp>
-#include <rt/raytracer.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/shading/raytracer.hpp>
+#include <rt/scene/scene.hpp>
 
 namespace {
 

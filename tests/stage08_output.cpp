@@ -17,10 +17,10 @@
 #include <limits>
 #include <string>
 
-#include <rt/byte_level.hpp>
-#include <rt/encoding.hpp>
-#include <rt/tonemap.hpp>
-#include <rt/transfer.hpp>
+#include <rt/core/byte_level.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/output/tonemap.hpp>
+#include <rt/output/transfer.hpp>
 
 // ===========================================================================
 // tone maps, exposure, transfer functions

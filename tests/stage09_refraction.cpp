@@ -19,11 +19,11 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/accelerator.hpp>
-#include <rt/dielectric.hpp>
-#include <rt/radiance.hpp>
-#include <rt/refraction.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/shading/dielectric.hpp>
+#include <rt/rendering/radiance.hpp>
+#include <rt/shading/refraction.hpp>
+#include <rt/scene/scene.hpp>
 
 namespace {
 

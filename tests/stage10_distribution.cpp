@@ -20,15 +20,15 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/accelerator.hpp>
-#include <rt/area_light.hpp>
-#include <rt/camera.hpp> // rt::frame
-#include <rt/glossy.hpp>
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
-#include <rt/thin_lens.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/scene/area_light.hpp>
+#include <rt/camera/camera.hpp> // rt::frame
+#include <rt/shading/glossy.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/camera/thin_lens.hpp>
 
 namespace {
 

@@ -22,16 +22,16 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/accelerator.hpp>
-#include <rt/adaptive.hpp>
-#include <rt/emitters.hpp>
-#include <rt/hemisphere.hpp>
-#include <rt/lambertian.hpp>
-#include <rt/mis.hpp>
-#include <rt/next_event.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/random.hpp>
-#include <rt/roulette.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/path_tracing/adaptive.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/path_tracing/hemisphere.hpp>
+#include <rt/path_tracing/lambertian.hpp>
+#include <rt/path_tracing/mis.hpp>
+#include <rt/path_tracing/next_event.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/core/random.hpp>
+#include <rt/path_tracing/roulette.hpp>
 
 #include "path_scenes.hpp"
 

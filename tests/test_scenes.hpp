@@ -13,12 +13,12 @@
 #include <utility>
 #include <vector>
 
-#include <rt/hit_record.hpp>
-#include <rt/mesh.hpp>
-#include <rt/obj_loader.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/input/obj_loader.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/core/vec.hpp>
 
 namespace rt_test {
 

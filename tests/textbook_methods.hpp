@@ -20,7 +20,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 namespace rt_test {
 

@@ -63,7 +63,7 @@ from grading.common import run  # noqa: E402
 from grading.sandbox import (Processors, TestUser, UidBlock, choose_user, claim_uid_block, reap_all,  # noqa: E402
                              run_judged, slot_user)
 from grading.splice import LineMaps, StudentFile, outside_differences, normalise, read_student_file  # noqa: E402
-from grading.submission import HEADER_SUFFIXES, find_rt_folder, unpack  # noqa: E402,F401
+from grading.submission import HEADER_SUFFIXES, find_rt_folder, reference_path, unpack  # noqa: E402,F401
 from grading.weights import VISIBILITIES, Weights, load_weights  # noqa: E402,F401
 
 DEFAULT_BUDGET = 600
@@ -168,8 +168,17 @@ def read_submission(ctx: Context, rt_folder: Path, root: Path, outcome: Outcome)
     notes: List[str] = []
     handed_in = sorted(p.relative_to(rt_folder).as_posix() for p in rt_folder.rglob("*")
                        if p.is_file() and p.name.endswith(HEADER_SUFFIXES))
-    for name in handed_in:
-        rel = f"include/rt/{name}"
+    # a header at its kit path first, then one taken by its file name (handed in loose)
+    exact = {f"include/rt/{name}" for name in handed_in}
+    taken: Dict[str, str] = {}
+    for name in sorted(handed_in, key=lambda n: f"include/rt/{n}" not in reference.plan.files):
+        rel = reference_path(name, reference.plan.files) or f"include/rt/{name}"
+        if rel != f"include/rt/{name}":
+            if rel in exact or rel in taken:
+                notes.append(f"{name}: the kit's {rel} was handed in too; this copy is ignored")
+                continue
+            notes.append(f"{name}: graded as {rel}, the kit's header of that name")
+        taken[rel] = name
         try:
             # the exact bytes: a byte that is not UTF-8 stays one (a surrogate), for the region
             # scanner to refuse, rather than becoming U+FFFD, which the compiler never sees

@@ -33,6 +33,7 @@ import argparse
 import fnmatch
 import json
 import os
+import posixpath
 import re
 import shutil
 import subprocess
@@ -686,7 +687,7 @@ def switchable_body(region: Region, doc: Optional[str], body: List[str]) -> List
     return lines + body
 
 
-# Appended to the switchable kit's include/rt/error.hpp (check_kit only, never a student's kit).
+# Appended to the switchable kit's include/rt/core/error.hpp (check_kit only, never a student's kit).
 KIT_CHECK_SWITCH = """
 // check_kit's switchable kit: RT_KIT_STRIP=5 (or 5,7) makes the exercises of
 // those stages throw their not-done message, as a kit that strips them would.
@@ -828,20 +829,19 @@ def switchable_plan(root: Path) -> KitPlan:
         by_file.setdefault(r.path, []).append(r)
     for rel, file_regions in by_file.items():
         plan.contents[rel] = switchable_text(rel, (root / rel).read_text(encoding="utf-8"), file_regions, doc_of)
-    error_hpp = "include/rt/error.hpp"
+    error_hpp = "include/rt/core/error.hpp"
     plan.contents[error_hpp] = plan.contents.get(error_hpp, (root / error_hpp).read_text(encoding="utf-8")) + \
         KIT_CHECK_SWITCH
     return plan
 
 
 def _error_header_include(rel: str) -> str:
-    """How a file at `rel` includes rt/error.hpp."""
-    if rel.startswith("include/rt/") and rel.count("/") == 2:
-        return '#include "error.hpp" // rt::exercise_not_done (student kit)'
+    """How a file at `rel` includes rt/core/error.hpp: by a relative path from inside
+    include/rt, as the headers include each other; by <rt/...> from anywhere else."""
     if rel.startswith("include/rt/"):
-        depth = rel.count("/") - 2
-        return f'#include "{"../" * depth}error.hpp" // rt::exercise_not_done (student kit)'
-    return "#include <rt/error.hpp> // rt::exercise_not_done (student kit)"
+        path = posixpath.relpath("include/rt/core/error.hpp", posixpath.dirname(rel))
+        return f'#include "{path}" // rt::exercise_not_done (student kit)'
+    return "#include <rt/core/error.hpp> // rt::exercise_not_done (student kit)"
 
 
 def strip_text(rel: str, text: str, regions: List[Region], doc_of: Dict[int, Optional[str]]) -> str:
@@ -859,7 +859,7 @@ def strip_text(rel: str, text: str, regions: List[Region], doc_of: Dict[int, Opt
 
 
 def _with_error_include(rel: str, stripped: str) -> str:
-    """`stripped` with rt/error.hpp included after the last #include of its opening block."""
+    """`stripped` with rt/core/error.hpp included after the last #include of its opening block."""
     out = stripped.split("\n")
     at, in_comment = 0, False
     for k, l in enumerate(out):  # after the last #include of the file's opening block

@@ -50,39 +50,39 @@ def _m(stage: int, row: str, edits: Sequence[Tuple[str, str, str]], first: str, 
     return Mistake(stage, row, tuple(Edit(*e) for e in edits), first, tuple(names), suite)
 
 
-CAMERA = "include/rt/camera.hpp"
-CAMERA_STATEMENT = "include/rt/camera_statement.hpp"
-SAMPLING = "include/rt/pixel_sampling.hpp"
-SPHERE = "include/rt/sphere.hpp"
-TRIANGLE = "include/rt/triangle.hpp"
-HIT_LIST = "include/rt/hit_list.hpp"
-SLAB = "include/rt/slab.hpp"
-GROUPS = "include/rt/groups.hpp"
-SHADING = "include/rt/shading.hpp"
-RAYTRACER = "include/rt/raytracer.hpp"
-TONEMAP = "include/rt/tonemap.hpp"
-TRANSFER = "include/rt/transfer.hpp"
-DIELECTRIC = "include/rt/dielectric.hpp"
-REFRACTION = "include/rt/refraction.hpp"
-AREA_LIGHT = "include/rt/area_light.hpp"
-THIN_LENS = "include/rt/thin_lens.hpp"
-GLOSSY = "include/rt/glossy.hpp"
-HEMISPHERE = "include/rt/hemisphere.hpp"
-LAMBERTIAN = "include/rt/lambertian.hpp"
-NEXT_EVENT = "include/rt/next_event.hpp"
-MIS = "include/rt/mis.hpp"
-ROULETTE = "include/rt/roulette.hpp"
-ADAPTIVE = "include/rt/adaptive.hpp"
+CAMERA = "include/rt/camera/camera.hpp"
+CAMERA_STATEMENT = "include/rt/input/camera_statement.hpp"
+SAMPLING = "include/rt/camera/pixel_sampling.hpp"
+SPHERE = "include/rt/intersection/sphere.hpp"
+TRIANGLE = "include/rt/intersection/triangle.hpp"
+HIT_LIST = "include/rt/intersection/hit_list.hpp"
+SLAB = "include/rt/intersection/slab.hpp"
+GROUPS = "include/rt/intersection/groups.hpp"
+SHADING = "include/rt/shading/shading.hpp"
+RAYTRACER = "include/rt/shading/raytracer.hpp"
+TONEMAP = "include/rt/output/tonemap.hpp"
+TRANSFER = "include/rt/output/transfer.hpp"
+DIELECTRIC = "include/rt/shading/dielectric.hpp"
+REFRACTION = "include/rt/shading/refraction.hpp"
+AREA_LIGHT = "include/rt/scene/area_light.hpp"
+THIN_LENS = "include/rt/camera/thin_lens.hpp"
+GLOSSY = "include/rt/shading/glossy.hpp"
+HEMISPHERE = "include/rt/path_tracing/hemisphere.hpp"
+LAMBERTIAN = "include/rt/path_tracing/lambertian.hpp"
+NEXT_EVENT = "include/rt/path_tracing/next_event.hpp"
+MIS = "include/rt/path_tracing/mis.hpp"
+ROULETTE = "include/rt/path_tracing/roulette.hpp"
+ADAPTIVE = "include/rt/path_tracing/adaptive.hpp"
 
 _JITTER_DRAWS = ("            const real xi1 = real(rng.next_float()); // one draw per statement: a fixed order\n"
                  "            const real xi2 = real(rng.next_float());\n")
-_QUANTIZE = ("include/rt/byte_level.hpp", "    return nearest_byte_level(v);",
+_QUANTIZE = ("include/rt/core/byte_level.hpp", "    return nearest_byte_level(v);",
              "    return std::uint8_t(v * 255.0f);")
 
 MISTAKES: List[Mistake] = [
     # --- stage 01 ---
     _m(1, "`scene_bounds` skips meshes",
-       [("include/rt/scene.hpp",
+       [("include/rt/scene/scene.hpp",
          "        box.grow(std::visit([](const auto& concrete) { return bounds(concrete); }, item));",
          "        if (!std::holds_alternative<mesh>(item))\n"
          "            box.grow(std::visit([](const auto& concrete) { return bounds(concrete); }, item));")],
@@ -112,7 +112,7 @@ MISTAKES: List[Mistake] = [
        [(CAMERA, "fov_degrees * pi / real(360)", "fov_degrees * pi / real(180)")],
        "field of view to window keeps the aspect ratio", ["the field of view not halved"]),
     _m(2, "the direction not normalised in `direction_to_color`",
-       [("include/rt/ray_image.hpp", "const vec3 unit = glm::normalize(d);", "const vec3 unit = d;")],
+       [("include/rt/camera/ray_image.hpp", "const vec3 unit = glm::normalize(d);", "const vec3 unit = d;")],
        "direction to color maps", ["normalise the direction first"]),
     _m(2, "samples in [0, 1) instead of pixel (i, j)",
        [(SAMPLING, "positions.emplace_back(real(i) + (real(a) + xi1) / real(n), real(j) + (real(b) + xi2) / real(n));",

@@ -81,11 +81,11 @@ class Render:
         return text
 
 
-NO_OFFSET_07 = Plant("include/rt/raytracer.hpp",
+NO_OFFSET_07 = Plant("include/rt/shading/raytracer.hpp",
                      "const ray reflected = spawn_ray(hit, reflect(r.direction, hit.normal));",
                      "const ray reflected = ray{hit.point, reflect(r.direction, hit.normal)};",
                      "the mirror ray started at the hit point (ray{hit.point, r})")
-NO_OFFSET_09 = Plant("include/rt/dielectric.hpp",
+NO_OFFSET_09 = Plant("include/rt/shading/dielectric.hpp",
                      "return ray_color_glass(s, accel, spawn_ray(hit, direction), depth + 1, options);",
                      "return ray_color_glass(s, accel, ray{hit.point, direction}, depth + 1, options);",
                      "new rays started at the hit point (ray{hit.point, t})")

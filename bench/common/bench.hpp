@@ -24,15 +24,15 @@
 #include <string>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/config.hpp>
-#include <rt/error.hpp>
-#include <rt/parallel.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/core/config.hpp>
+#include <rt/core/error.hpp>
+#include <rt/system/parallel.hpp>
 
 #include "command_line.hpp" // stages/common
 
 #if defined(RT_BENCH_HAS_ACCELERATOR)
-#include <rt/accelerator.hpp> // the BVH path of the machine line
+#include <rt/bvh/accelerator.hpp> // the BVH path of the machine line
 #endif
 
 #ifndef RT_BENCH_FLAGS

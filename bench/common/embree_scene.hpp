@@ -11,9 +11,9 @@
 #include <limits>
 #include <string>
 
-#include <rt/error.hpp>
-#include <rt/mesh.hpp>
-#include <rt/ray.hpp>
+#include <rt/core/error.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/core/ray.hpp>
 
 #include "bench.hpp"
 

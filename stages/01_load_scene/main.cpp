@@ -9,8 +9,8 @@
 #include <iostream>
 #include <variant>
 
-#include <rt/camera_model.hpp>
-#include <rt/scene.hpp>
+#include <rt/scene/camera_model.hpp>
+#include <rt/scene/scene.hpp>
 
 #include "stage_main.hpp"
 #include "support.hpp"

@@ -26,11 +26,11 @@
 #include <cstdint>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/image.hpp>
-#include <rt/pixel_sampling.hpp>
-#include <rt/random.hpp>
-#include <rt/vec.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/image.hpp>
+#include <rt/camera/pixel_sampling.hpp>
+#include <rt/core/random.hpp>
+#include <rt/core/vec.hpp>
 
 namespace stage {
 

@@ -1,5 +1,5 @@
 // Stage 02 - one ray per pixel, shown as an image of ray directions:
-// (r, g, b) = (d/|d| + 1) / 2 (see include/rt/ray_image.hpp).
+// (r, g, b) = (d/|d| + 1) / 2 (see include/rt/camera/ray_image.hpp).
 //
 //     stage02_generate_rays scenes/showcase.scene -o rays.png
 //     stage02_generate_rays scenes/showcase.scene -o rays.ppm --projection orthographic
@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/image_io.hpp>
-#include <rt/path_text.hpp>
-#include <rt/ray_image.hpp>
-#include <rt/scene_loader.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/system/path_text.hpp>
+#include <rt/camera/ray_image.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "edge.hpp"
 #include "stage_main.hpp"

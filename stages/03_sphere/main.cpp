@@ -29,13 +29,13 @@
 #include <variant>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/hit_record.hpp>
-#include <rt/image.hpp>
-#include <rt/atomic_file.hpp>
-#include <rt/scene.hpp>
-#include <rt/sphere.hpp>
-#include <rt/sphere_stable.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/image.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/intersection/sphere_stable.hpp>
 
 #include "pixel_story.hpp"
 #include "stage_main.hpp"

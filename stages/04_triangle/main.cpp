@@ -25,11 +25,11 @@
 #include <variant>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/atomic_file.hpp>
-#include <rt/camera.hpp>
-#include <rt/hit_list.hpp>
-#include <rt/parallel.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/intersection/hit_list.hpp>
+#include <rt/system/parallel.hpp>
 
 #include "pixel_story.hpp"
 #include "stage_main.hpp"

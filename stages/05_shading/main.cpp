@@ -1,4 +1,4 @@
-// Stage 05 - shading: every pixel colored by Blinn-Phong (include/rt/shading.hpp),
+// Stage 05 - shading: every pixel colored by Blinn-Phong (include/rt/shading/shading.hpp),
 // every light visible (no shadows yet: that is stage 06).
 //
 //     stage05_shading scenes/shading.scene -o shading.png [--falloff]
@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include <rt/shading.hpp>
+#include <rt/shading/shading.hpp>
 
 #include "shaded_stage.hpp"
 

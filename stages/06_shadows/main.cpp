@@ -1,5 +1,5 @@
 // Stage 06 - shadows: Blinn-Phong with a shadow ray to each light
-// (include/rt/shadows.hpp), started past the hit point's rounding error
+// (include/rt/shading/shadows.hpp), started past the hit point's rounding error
 // (light_visible: spawn_ray_to) or, for comparison, with the textbook's fixed
 // epsilon.
 //
@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include <rt/shading.hpp>
-#include <rt/shadows.hpp>
+#include <rt/shading/shading.hpp>
+#include <rt/shading/shadows.hpp>
 
 #include "shaded_stage.hpp"
 

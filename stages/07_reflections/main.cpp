@@ -1,12 +1,12 @@
 // Stage 07 - reflections: shading, shadows and mirrors, L += km raycolor(p, r)
-// (include/rt/raytracer.hpp).
+// (include/rt/shading/raytracer.hpp).
 //
 //     stage07_reflections scenes/mirrors.scene -o mirrors.png [--max-depth N]
 #include <iostream>
 #include <optional>
 #include <string>
 
-#include <rt/raytracer.hpp>
+#include <rt/shading/raytracer.hpp>
 
 #include "shaded_stage.hpp"
 

@@ -21,14 +21,14 @@
 #include <string>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/encoding.hpp>
-#include <rt/filter.hpp>
-#include <rt/image.hpp>
-#include <rt/encoded_output.hpp>
-#include <rt/image_io.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/core/image.hpp>
+#include <rt/output/encoded_output.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
 
 #include "stage_main.hpp"
 

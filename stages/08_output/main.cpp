@@ -8,7 +8,7 @@
 //
 // Each sample's color is rt::ray_color (stages 05-07) over the scene's
 // rt::accelerator (stage 04), or a debug image (--aov): rt::make_radiance in
-// include/rt/radiance.hpp, shared with the viewer (stages/viewer). The
+// include/rt/rendering/radiance.hpp, shared with the viewer (stages/viewer). The
 // renderer, the BVH and the stage-07 color are compiled once
 // (stages/common/support_frame.cpp); this file holds stage 08's own part.
 #include <algorithm>
@@ -22,16 +22,16 @@
 #include <sstream>
 #include <string>
 
-#include <rt/aov.hpp>
-#include <rt/camera.hpp>
-#include <rt/encoding_settings.hpp>
-#include <rt/error.hpp>
-#include <rt/image_io.hpp>
-#include <rt/os_error.hpp>
-#include <rt/progress.hpp>
-#include <rt/renderer.hpp>
-#include <rt/scene.hpp>
-#include <rt/scene_input.hpp>
+#include <rt/output/aov.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/output/encoding_settings.hpp>
+#include <rt/core/error.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/system/os_error.hpp>
+#include <rt/rendering/progress.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/rendering/scene_input.hpp>
 
 #include "pixel_story.hpp"
 #include "render_arguments.hpp"

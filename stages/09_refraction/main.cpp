@@ -1,12 +1,12 @@
 // Stage 09 - refraction: glass, L = k (R raycolor(p, r) + (1 - R) raycolor(p, t))
-// (include/rt/dielectric.hpp, include/rt/refraction.hpp).
+// (include/rt/shading/dielectric.hpp, include/rt/shading/refraction.hpp).
 //
 //     stage09_refraction scenes/glass.scene -o glass.png [--max-depth N]
 #include <iostream>
 #include <optional>
 #include <string>
 
-#include <rt/dielectric.hpp>
+#include <rt/shading/dielectric.hpp>
 
 #include "shaded_stage.hpp"
 

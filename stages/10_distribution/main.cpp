@@ -1,5 +1,5 @@
 // Stage 10 - distribution ray tracing: soft shadows from area lights, glossy
-// mirrors, depth of field (include/rt/area_light.hpp, glossy.hpp, thin_lens.hpp).
+// mirrors, depth of field (include/rt/scene/area_light.hpp, glossy.hpp, thin_lens.hpp).
 // Each pixel averages many samples, and each sample draws its own point of the
 // lens, of every area light and of every glossy reflection.
 //
@@ -13,10 +13,10 @@
 #include <optional>
 #include <string>
 
-#include <rt/atomic_file.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/scene.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/scene/scene.hpp>
 
 #include "pixel_story.hpp"
 #include "stage_main.hpp"

@@ -1,5 +1,5 @@
 // Stage 11 - path tracing: light that bounces, from surfaces that glow
-// (include/rt/hemisphere.hpp, lambertian.hpp, next_event.hpp, mis.hpp,
+// (include/rt/path_tracing/hemisphere.hpp, lambertian.hpp, next_event.hpp, mis.hpp,
 // roulette.hpp, adaptive.hpp; joined by path_tracer.hpp).
 //
 //     stage11_path_tracing scenes/cornell.scene -o cornell.png [--spp N] [--strategy mis] [--adaptive]
@@ -15,15 +15,15 @@
 #include <sstream>
 #include <string>
 
-#include <rt/accelerator.hpp>
-#include <rt/atomic_file.hpp>
-#include <rt/emitters.hpp>
-#include <rt/enum_names.hpp>
-#include <rt/mis.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/radiance.hpp> // camera_rays
-#include <rt/scene.hpp>
-#include <rt/scene_input.hpp> // has_obj_extension
+#include <rt/bvh/accelerator.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/core/enum_names.hpp>
+#include <rt/path_tracing/mis.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/rendering/radiance.hpp> // camera_rays
+#include <rt/scene/scene.hpp>
+#include <rt/rendering/scene_input.hpp> // has_obj_extension
 
 #include "stage_main.hpp"
 #include "support.hpp"

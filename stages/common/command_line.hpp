@@ -35,10 +35,10 @@
 #include <string>
 #include <vector>
 
-#include <rt/config.hpp>
-#include <rt/decimal_text.hpp>
-#include <rt/error.hpp>
-#include <rt/path_text.hpp>
+#include <rt/core/config.hpp>
+#include <rt/core/decimal_text.hpp>
+#include <rt/core/error.hpp>
+#include <rt/system/path_text.hpp>
 
 namespace stage {
 
@@ -134,7 +134,7 @@ inline std::uint64_t parse_seed(const std::string& option, const std::string& te
 }
 
 /// A finite number in [lo, hi] (lo excluded when `open_below`), written as
-/// in a scene file and read as the scene loader reads it (rt/decimal_text.hpp:
+/// in a scene file and read as the scene loader reads it (rt/core/decimal_text.hpp:
 /// the same in every locale, no blanks, no hexadecimal; the rt::real nearest
 /// the text, so that rt::exact_number_text's text comes back exactly).
 inline double parse_number(const std::string& option, const std::string& text, double lo, double hi,

@@ -13,11 +13,11 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/light.hpp>
-#include <rt/light_sample.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
-#include <rt/vec.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/scene/light_sample.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/core/vec.hpp>
 
 #include "pixel_story.hpp"
 

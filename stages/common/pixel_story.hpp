@@ -24,11 +24,11 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/hit_record.hpp>
-#include <rt/light.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/core/vec.hpp>
 
 namespace stage {
 

@@ -10,15 +10,15 @@
 #include <sstream>
 #include <string>
 
-#include <rt/camera.hpp>
-#include <rt/encoding_settings.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/aov.hpp>
-#include <rt/camera_statement.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/scene.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/output/encoding_settings.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/output/aov.hpp>
+#include <rt/input/camera_statement.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/scene/scene.hpp>
 
 #include "stage_main.hpp"
 #include "support.hpp"

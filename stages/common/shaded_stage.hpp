@@ -10,10 +10,10 @@
 #include <iostream>
 #include <string>
 
-#include <rt/atomic_file.hpp>
-#include <rt/camera.hpp>
-#include <rt/scene.hpp>
-#include <rt/shading.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/shading/shading.hpp>
 
 #include "light_terms.hpp"
 #include "pixel_story.hpp"

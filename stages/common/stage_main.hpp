@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include <rt/atomic_file.hpp>
-#include <rt/error.hpp>
-#include <rt/os_error.hpp>
-#include <rt/platform.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/core/error.hpp>
+#include <rt/system/os_error.hpp>
+#include <rt/system/platform.hpp>
 
 #include "command_line.hpp"
 

@@ -24,11 +24,11 @@
 #include <variant>
 #include <vector>
 
-#include <rt/hit_record.hpp>
-#include <rt/image.hpp>
-#include <rt/ray.hpp>
-#include <rt/scene.hpp>
-#include <rt/vec.hpp>
+#include <rt/core/hit_record.hpp>
+#include <rt/core/image.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/core/vec.hpp>
 
 // rt::accelerator lives in the inline namespace of this unit's fast paths
 // (rt/bvh/abi_begin.hpp: no intrinsics, so this header stays light)

@@ -4,12 +4,12 @@
 #include <cstdint>
 #include <memory>
 
-#include <rt/dielectric.hpp>
-#include <rt/glossy.hpp>
-#include <rt/random.hpp>
-#include <rt/radiance.hpp>
-#include <rt/raytracer.hpp>
-#include <rt/shading.hpp>
+#include <rt/shading/dielectric.hpp>
+#include <rt/shading/glossy.hpp>
+#include <rt/core/random.hpp>
+#include <rt/rendering/radiance.hpp>
+#include <rt/shading/raytracer.hpp>
+#include <rt/shading/shading.hpp>
 
 #include "light_terms.hpp"
 #include "support.hpp"

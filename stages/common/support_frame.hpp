@@ -12,12 +12,12 @@
 #include <functional>
 #include <string>
 
-#include <rt/aov.hpp>
-#include <rt/image.hpp>
-#include <rt/ray.hpp>
-#include <rt/renderer.hpp>
-#include <rt/scene.hpp>
-#include <rt/vec.hpp>
+#include <rt/output/aov.hpp>
+#include <rt/core/image.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/core/vec.hpp>
 
 #include "pixel_story.hpp"
 

@@ -1,7 +1,7 @@
 // Scene files and bare OBJ models for the stage programs, compiled once (support.hpp).
 #include "support.hpp"
 
-#include <rt/scene_input.hpp>
+#include <rt/rendering/scene_input.hpp>
 
 #include "command_line.hpp" // file_argument
 

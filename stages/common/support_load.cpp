@@ -1,7 +1,7 @@
 // The scene reader for the stage programs, compiled once (support.hpp).
 #include "support.hpp"
 
-#include <rt/scene_loader.hpp>
+#include <rt/input/scene_loader.hpp>
 
 #include "command_line.hpp" // file_argument
 

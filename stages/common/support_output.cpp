@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include <rt/encoded_output.hpp>
-#include <rt/encoding.hpp>
-#include <rt/tonemap.hpp>
+#include <rt/output/encoded_output.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/output/tonemap.hpp>
 
 #include "command_line.hpp"     // file_argument
 #include "render_arguments.hpp" // number_text

@@ -1,7 +1,7 @@
 // The threaded renderer for the stage programs, compiled once (support.hpp).
 #include "support.hpp"
 
-#include <rt/renderer.hpp>
+#include <rt/rendering/renderer.hpp>
 
 namespace stage {
 

@@ -1,7 +1,7 @@
 // The image writer for the stage programs, compiled once (support.hpp).
 #include "support.hpp"
 
-#include <rt/image_io.hpp>
+#include <rt/output/image_io.hpp>
 
 #include "command_line.hpp" // file_argument
 

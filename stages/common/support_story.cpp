@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <variant>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 namespace stage {
 

@@ -1,7 +1,7 @@
 // The library's accelerator for the stage programs, compiled once (support.hpp).
 #include "support.hpp"
 
-#include <rt/accelerator.hpp>
+#include <rt/bvh/accelerator.hpp>
 
 namespace stage {
 

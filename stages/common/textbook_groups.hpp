@@ -11,10 +11,10 @@
 #include <utility>
 #include <variant>
 
-#include <rt/groups.hpp>
-#include <rt/mesh.hpp>
-#include <rt/sphere.hpp>
-#include <rt/triangle.hpp>
+#include <rt/intersection/groups.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/intersection/triangle.hpp>
 
 namespace stage {
 

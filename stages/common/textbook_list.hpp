@@ -9,10 +9,10 @@
 #include <cstddef>
 #include <variant>
 
-#include <rt/hit_list.hpp>
-#include <rt/mesh.hpp>
-#include <rt/sphere.hpp>
-#include <rt/triangle.hpp>
+#include <rt/intersection/hit_list.hpp>
+#include <rt/scene/mesh.hpp>
+#include <rt/intersection/sphere.hpp>
+#include <rt/intersection/triangle.hpp>
 
 namespace stage {
 

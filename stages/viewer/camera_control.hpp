@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <rt/camera.hpp>
-#include <rt/vec.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/vec.hpp>
 
 namespace viewer {
 

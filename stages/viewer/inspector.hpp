@@ -26,9 +26,9 @@
 
 #include <glm/geometric.hpp>
 
-#include <rt/camera.hpp>
-#include <rt/ray.hpp>
-#include <rt/vec.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/ray.hpp>
+#include <rt/core/vec.hpp>
 
 #include "pixel_story.hpp"
 

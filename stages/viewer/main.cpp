@@ -4,7 +4,7 @@
 //     viewer ../shared/meshes/stanford-bunny.obj --aov rays --spp 16
 //
 // The viewer holds no rendering logic: the scene, the camera's rays and the
-// radiance function come from rt/render_setup.hpp and the options from
+// radiance function come from rt/rendering/render_setup.hpp and the options from
 // stages/common/render_arguments.hpp, exactly as in stage08_output; the
 // progressive loop (progressive.hpp) calls rt::render on crops, and the window
 // shows the float image through rt::encode_color (encoding.hpp). So every
@@ -29,19 +29,19 @@
 
 #include <SDL.h>
 
-#include <rt/atomic_file.hpp>
-#include <rt/camera.hpp>
-#include <rt/encoded_output.hpp>
-#include <rt/encoding.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/image.hpp>
-#include <rt/image_io.hpp>
-#include <rt/progress.hpp>
-#include <rt/render_setup.hpp>
-#include <rt/sampler.hpp>
-#include <rt/scene.hpp>
-#include <rt/tonemap.hpp>
+#include <rt/system/atomic_file.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/output/encoded_output.hpp>
+#include <rt/output/encoding.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/core/image.hpp>
+#include <rt/output/image_io.hpp>
+#include <rt/rendering/progress.hpp>
+#include <rt/rendering/render_setup.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/output/tonemap.hpp>
 
 #include "inspector.hpp"
 #include "pixel_story.hpp"

@@ -40,17 +40,17 @@
 #include <utility>
 #include <vector>
 
-#include <rt/accelerator.hpp>
-#include <rt/camera.hpp>
-#include <rt/error.hpp>
-#include <rt/filter.hpp>
-#include <rt/emitters.hpp>
-#include <rt/image.hpp>
-#include <rt/path_tracer.hpp>
-#include <rt/render_setup.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/scene.hpp>
+#include <rt/bvh/accelerator.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/error.hpp>
+#include <rt/rendering/filter.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/core/image.hpp>
+#include <rt/path_tracing/path_tracer.hpp>
+#include <rt/rendering/render_setup.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/scene/scene.hpp>
 
 namespace viewer {
 

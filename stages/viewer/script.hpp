@@ -22,8 +22,8 @@
 #include <string>
 #include <vector>
 
-#include <rt/decimal_text.hpp>
-#include <rt/error.hpp>
+#include <rt/core/decimal_text.hpp>
+#include <rt/core/error.hpp>
 
 namespace viewer {
 
@@ -72,7 +72,7 @@ inline const char* script_signature(const std::string& name)
 inline bool is_number(const std::string& text, bool whole)
 {
     if (!whole) {
-        // as a scene file's numbers are read (rt/decimal_text.hpp): the same in
+        // as a scene file's numbers are read (rt/core/decimal_text.hpp): the same in
         // every locale, no blanks, no hexadecimal
         double value = 0;
         return rt::detail::read_decimal<double>(text.data(), text.data() + text.size(), value) ==

@@ -11,6 +11,7 @@ cmake -S "$root" -B "$work/rt-build" -DRT_BUILD_TESTS=OFF -DRT_BUILD_STAGES=OFF 
       -DCMAKE_INSTALL_PREFIX="$work/prefix" > "$work/rt-configure.log"
 cmake --install "$work/rt-build" > "$work/rt-install.log"
 test -f "$work/prefix/include/rt/rt.hpp"
+test -f "$work/prefix/include/rt/vec.hpp" # the old flat paths' forwarders, for one release (CHANGELOG.md)
 find "$work/prefix" -name rtConfig.cmake | grep -q .
 
 echo "== consumer: the README's code example, as written there"

@@ -7,7 +7,7 @@
 // sec. 4.3, eq. 4.1: u = l + (r - l) x / nx, v = b + (t - b) y / ny.
 #include <doctest/doctest.h>
 
-#include <rt/camera.hpp>
+#include <rt/camera/camera.hpp>
 
 namespace {
 

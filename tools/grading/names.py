@@ -31,7 +31,7 @@ PUBLIC_NAMES = REPO / "tests" / "public_names.txt"
 
 # Stage 02's PPM writer writes to the stream it is given: it alone may use the members
 # and the one cast that takes (write, put, reinterpret_cast<const char*>, std::streamsize).
-PPM_WRITER_FILE = "include/rt/image_io.hpp"
+PPM_WRITER_FILE = "include/rt/output/image_io.hpp"
 
 # --------------------------------------------------------------------------
 # The language

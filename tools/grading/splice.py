@@ -49,7 +49,7 @@ class StudentRegion:
 @dataclass
 class StudentFile:
     """What the grader takes from one of the student's headers."""
-    rel: str                                   # include/rt/sphere.hpp
+    rel: str                                   # include/rt/intersection/sphere.hpp
     regions: Dict[Tuple[int, str], StudentRegion] = field(default_factory=dict)
     notes: List[str] = field(default_factory=list)   # markers the grader could not use
     lines: List[str] = field(default_factory=list)

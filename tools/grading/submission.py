@@ -303,15 +303,23 @@ def _unpack_tar(job: _Unpacking, raw: BinaryIO) -> None:
 
 def find_rt_folder(root: Path, reference_headers: Sequence[str]) -> Path:
     """The submission's rt header folder: include/rt if there is one, else the
-    shallowest folder named rt with headers, else a folder holding rt's headers."""
+    shallowest folder named rt with headers in it or in its folders (rt's layers:
+    rt/intersection/sphere.hpp), else a folder holding rt's headers."""
     candidates: List[Tuple[int, int, str, Path]] = []
     known = set(reference_headers)
+    with_headers = set()  # the folders with a header in them or below
+    for dirpath, dirnames, filenames in os.walk(root):
+        if any(f.endswith(HEADER_SUFFIXES) for f in filenames):
+            here = Path(dirpath)
+            while here not in with_headers and here != root.parent:
+                with_headers.add(here)
+                here = here.parent
     for dirpath, dirnames, filenames in os.walk(root):
         dirnames.sort()
         here = Path(dirpath)
-        headers = [f for f in filenames if f.endswith(HEADER_SUFFIXES)]
-        if not headers:
+        if here not in with_headers:
             continue
+        headers = [f for f in filenames if f.endswith(HEADER_SUFFIXES)]
         depth = len(here.relative_to(root).parts)
         if here.name == "rt" and here.parent.name == "include":
             candidates.append((0, depth, str(here), here))
@@ -328,6 +336,19 @@ def find_rt_folder(root: Path, reference_headers: Sequence[str]) -> Path:
         raise SubmissionError("no include/rt folder (or rt's headers) found in the submission; "
                               "hand in your include/rt folder, or the whole repository")
     return min(candidates)[3]
+
+
+def reference_path(name: str, reference_files: Sequence[str]) -> Optional[str]:
+    """The reference's path (include/rt/...) for a header handed in as `name`, relative to
+    the submission's rt folder: the same path, else the one reference header of that file
+    name (a header handed in loose, or by its path before rt's folders, rt/sphere.hpp for
+    rt/intersection/sphere.hpp), else None."""
+    rel = f"include/rt/{name}"
+    if rel in reference_files:
+        return rel
+    base = name.rsplit("/", 1)[-1]
+    same = [f for f in reference_files if f.startswith("include/rt/") and f.rsplit("/", 1)[-1] == base]
+    return same[0] if len(same) == 1 else None
 
 
 def student_name(entry: Path) -> str:

@@ -46,7 +46,7 @@ FIXTURE_HEADER = """
 
     #include <cstdlib>
 
-    #include <rt/error.hpp>
+    #include <rt/core/error.hpp>
 
     namespace rt {
 
@@ -108,7 +108,7 @@ def make_fixture_reference(into: Path) -> Path:
     """A reference with rt's CMake files and three stages of one exercise each (fx.hpp)."""
     ref = into / "reference"
     for rel in ("CMakeLists.txt", "cmake", "tests/CMakeLists.txt", "tests/doctest_main.cpp",
-                "tests/rt_skip.hpp", "stages/CMakeLists.txt", "stages/common", "third_party", "include/rt/error.hpp",
+                "tests/rt_skip.hpp", "stages/CMakeLists.txt", "stages/common", "third_party", "include/rt/core/error.hpp",
                 "tools/make_kit.py", "tools/kit_manifest.json"):
         source, destination = REPO / rel, ref / rel
         destination.parent.mkdir(parents=True, exist_ok=True)

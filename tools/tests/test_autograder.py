@@ -49,6 +49,10 @@ def gradescope_skip_reason() -> str:
     return ""
 
 
+SPHERE = "intersection/sphere.hpp"  # under include/rt
+VEC = "core/vec.hpp"
+
+
 class Gradescope(unittest.TestCase):
     """The autograder of stage 03, in a fake /autograder."""
 
@@ -73,7 +77,7 @@ class Gradescope(unittest.TestCase):
                            timeout=900)
         assert p.returncode == 0, p.stdout + p.stderr
         cls.original = {name: (REFERENCE / "include" / "rt" / name).read_text()
-                        for name in ("sphere.hpp", "vec.hpp")}
+                        for name in (SPHERE, VEC)}
 
     @classmethod
     def tearDownClass(cls):
@@ -98,7 +102,7 @@ class Gradescope(unittest.TestCase):
 
     def sphere_with(self, body):
         """sphere.hpp with stage 03's region holding `body`."""
-        text = self.original["sphere.hpp"]
+        text = self.original[SPHERE]
         return re.sub(r"(// RT_EXERCISE_BEGIN\(stage03: [^)]*\)\n).*?(\n[ \t]*// RT_EXERCISE_END)",
                       lambda m: m.group(1) + body + m.group(2), text, count=1, flags=re.S)
 
@@ -114,16 +118,16 @@ class Gradescope(unittest.TestCase):
         self.assertEqual(results["score"], sum(t["max_score"] for t in results["tests"]))
 
     def test_doctest_macros_defined_in_another_header_change_nothing(self):
-        cheat = self.original["vec.hpp"].rstrip() + "\n#include <doctest/doctest.h>\n" + "\n".join(
+        cheat = self.original[VEC].rstrip() + "\n#include <doctest/doctest.h>\n" + "\n".join(
             f"#undef {m}\n#define {m}(...) ((void)0)" for m in DOCTEST_MACROS) + "\n"
         unused = "    (void)s;\n    (void)r;\n    (void)tmin;\n    (void)tmax;\n    (void)rec;\n"
         # claiming a hit for every ray passes no case of stage 03
-        results = self.run_autograder({"vec.hpp": cheat, "sphere.hpp": self.sphere_with(unused + "    return true;")})
+        results = self.run_autograder({VEC: cheat, SPHERE: self.sphere_with(unused + "    return true;")})
         self.assertEqual([t["score"] for t in self.stage03(results)], [0.0])
-        self.assertIn("include/rt/vec.hpp: expected the kit's header, found another", results["output"])
+        self.assertIn("include/rt/core/vec.hpp: expected the kit's header, found another", results["output"])
         # the body of the report, `return false;`, scores what it scores without the macros
-        with_macros = self.run_autograder({"vec.hpp": cheat, "sphere.hpp": self.sphere_with(unused + "    return false;")})
-        without = self.run_autograder({"sphere.hpp": self.sphere_with(unused + "    return false;")})
+        with_macros = self.run_autograder({VEC: cheat, SPHERE: self.sphere_with(unused + "    return false;")})
+        without = self.run_autograder({SPHERE: self.sphere_with(unused + "    return false;")})
         self.assertEqual(self.stage03(with_macros)[0]["score"], self.stage03(without)[0]["score"],
                          self.stage03(with_macros)[0]["output"][:3000])
         self.assertLess(self.stage03(with_macros)[0]["score"], self.stage03(with_macros)[0]["max_score"])
@@ -132,14 +136,14 @@ class Gradescope(unittest.TestCase):
         body = "    #define CHECK(...) ((void)0)\n    (void)s; (void)r; (void)tmin; (void)tmax; (void)rec;\n    return false;"
         text = self.sphere_with(body)
         line = text.split("\n").index("    #define CHECK(...) ((void)0)") + 1
-        results = self.run_autograder({"sphere.hpp": text})
+        results = self.run_autograder({SPHERE: text})
         test = self.stage03(results)[0]
         self.assertEqual(test["score"], 0)
-        self.assertIn(f"include/rt/sphere.hpp:{line}:5: expected no preprocessor directive in an exercise region, "
+        self.assertIn(f"include/rt/intersection/sphere.hpp:{line}:5: expected no preprocessor directive in an exercise region, "
                       f"found #define;", test["output"])
 
     def test_the_code_of_a_submission_cannot_read_the_reference(self):
-        reference = self.root / "source" / "rt" / "include" / "rt" / "shading.hpp"
+        reference = self.root / "source" / "rt" / "include" / "rt" / "shading" / "shading.hpp"
         text = reference.read_text()                               # root reads the reference there
         begin = text.index("RT_EXERCISE_BEGIN(stage05")
         body = [l.strip() for l in text[begin:text.index("RT_EXERCISE_END", begin)].split("\n")[1:]
@@ -156,16 +160,16 @@ class Gradescope(unittest.TestCase):
                   f"    }}\n"
                   f"    (void)s; (void)r; (void)tmin; (void)tmax; (void)rec;\n"
                   f"    return false;")
-        results = self.run_autograder({"sphere.hpp": self.sphere_with(attack)})
+        results = self.run_autograder({SPHERE: self.sphere_with(attack)})
         output = self.stage03(results)[0]["output"]
         self.assertEqual(self.stage03(results)[0]["score"], 0)
-        self.assertRegex(output, r"include/rt/sphere\.hpp:\d+:\d+: expected .*, found std::(FILE|fopen);")
+        self.assertRegex(output, r"include/rt/intersection/sphere\.hpp:\d+:\d+: expected .*, found std::(FILE|fopen);")
         self.assertNotIn("LEAKED", json.dumps(results))
         # the server the submission's code was built into holds the kit's stub of stage 05,
         # not the reference's body (tools/grading/tests/test_attacks.py reads with the
         # scanner off)
         self.run_autograder({})
-        servers = sorted((self.root / "cache" / "slots").glob("*/server/*/include/rt/shading.hpp"))
+        servers = sorted((self.root / "cache" / "slots").glob("*/server/*/include/rt/shading/shading.hpp"))
         self.assertTrue(servers, "expected the server's sources in the cache's slot")
         for server in servers:
             source = server.read_text()

@@ -253,7 +253,7 @@ class Leaks(unittest.TestCase):
             f"ray-sphere intersection (from {sphere.path}:{sphere.begin_line + 1 + first})"), problems)
         self.assertRegex(by_file["tests/library_watertight.cpp"],
                          r"^tests/library_watertight.cpp:\d+: holds [3-9] lines of the answer to stage04: "
-                         r"Moller-Trumbore ray-triangle intersection \(from include/rt/triangle.hpp:\d+\)")
+                         r"Moller-Trumbore ray-triangle intersection \(from include/rt/intersection/triangle.hpp:\d+\)")
 
 
 if __name__ == "__main__":
@@ -284,8 +284,8 @@ class Trace(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             tmp = Path(tmp)
             rt_dir = tmp / "include" / "rt"
-            rt_dir.mkdir(parents=True)
-            (rt_dir / "error.hpp").write_text((TOOLS.parent / "include" / "rt" / "error.hpp").read_text() +
+            (rt_dir / "core").mkdir(parents=True)
+            (rt_dir / "core" / "error.hpp").write_text((TOOLS.parent / "include" / "rt" / "core" / "error.hpp").read_text() +
                                               make_kit.KIT_CHECK_SWITCH)
             (rt_dir / "fixture.hpp").write_text(make_kit.switchable_text("include/rt/fixture.hpp", text, regions, {}))
             (tmp / "use.cpp").write_text(self.MAIN)

@@ -91,7 +91,7 @@ class Submissions(unittest.TestCase):
     def test_zip_paths_outside_and_links_are_skipped(self):
         archive = self.tmp / "s.zip"
         with zipfile.ZipFile(archive, "w") as z:
-            z.writestr("include/rt/sphere.hpp", "// mine\n")
+            z.writestr("include/rt/intersection/sphere.hpp", "// mine\n")
             z.writestr("../evil.hpp", "// outside\n")
             z.writestr("/abs.hpp", "// absolute\n")
             z.writestr("__MACOSX/include/rt/._sphere.hpp", "junk")
@@ -101,14 +101,14 @@ class Submissions(unittest.TestCase):
         out = self.tmp / "out"
         grade.unpack(archive, out)
         files = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file())
-        self.assertEqual(files, ["include/rt/sphere.hpp"])
+        self.assertEqual(files, ["include/rt/intersection/sphere.hpp"])
         self.assertFalse((self.tmp / "evil.hpp").exists())
 
     def test_tar_gz_with_a_symlink(self):
         archive = self.tmp / "s.tar.gz"
         with tarfile.open(archive, "w:gz") as t:
             data = b"// mine\n"
-            info = tarfile.TarInfo("repo/include/rt/camera.hpp")
+            info = tarfile.TarInfo("repo/include/rt/camera/camera.hpp")
             info.size = len(data)
             t.addfile(info, io.BytesIO(data))
             link = tarfile.TarInfo("repo/include/rt/evil.hpp")
@@ -121,7 +121,7 @@ class Submissions(unittest.TestCase):
         out = self.tmp / "out"
         grade.unpack(archive, out)
         files = sorted(p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file() or p.is_symlink())
-        self.assertEqual(files, ["repo/include/rt/camera.hpp"])
+        self.assertEqual(files, ["repo/include/rt/camera/camera.hpp"])
 
     def test_not_an_archive(self):
         bad = self.tmp / "s.rar"
@@ -129,11 +129,21 @@ class Submissions(unittest.TestCase):
         with self.assertRaises(grade.SubmissionError):
             grade.unpack(bad, self.tmp / "out")
 
+    def test_a_header_is_matched_by_its_path_then_its_name(self):
+        kit = ["include/rt/intersection/sphere.hpp", "include/rt/camera/camera.hpp", "include/rt/rt.hpp",
+               "include/rt/core/a.hpp", "include/rt/detail/a.hpp"]
+        self.assertEqual(grade.reference_path("intersection/sphere.hpp", kit), "include/rt/intersection/sphere.hpp")
+        self.assertEqual(grade.reference_path("sphere.hpp", kit), "include/rt/intersection/sphere.hpp")  # loose
+        self.assertEqual(grade.reference_path("old/camera.hpp", kit), "include/rt/camera/camera.hpp")
+        self.assertIsNone(grade.reference_path("a.hpp", kit))  # two of that name: no guess
+        self.assertIsNone(grade.reference_path("mine.hpp", kit))
+
     def test_the_rt_folder_is_found(self):
         layouts = {
-            ("repo/include/rt/sphere.hpp", "repo/backup/rt/sphere.hpp"): "repo/include/rt",
-            ("rt/sphere.hpp", "x/y/rt/camera.hpp"): "rt",
+            ("repo/include/rt/intersection/sphere.hpp", "repo/backup/rt/intersection/sphere.hpp"): "repo/include/rt",
+            ("rt/intersection/sphere.hpp", "x/y/rt/camera/camera.hpp"): "rt",
             ("sphere.hpp", "camera.hpp"): ".",
+            ("hw/include/rt/rt.hpp", "hw/include/rt/intersection/sphere.hpp"): "hw/include/rt",
         }
         for files, expected in layouts.items():
             with self.subTest(files=files):
@@ -226,7 +236,7 @@ class Regions(unittest.TestCase):
         self.assertTrue(any("found no open region" in n for n in student.notes))
 
     def test_composed_headers_keep_the_students_line_numbers(self):
-        ref = dedent(FIXTURE_HEADER).replace("#include <rt/error.hpp>\n\n", "")   # the kit's body needs it
+        ref = dedent(FIXTURE_HEADER).replace("#include <rt/core/error.hpp>\n\n", "")   # the kit's body needs it
         regions = make_kit.scan_file("include/rt/fx.hpp", ref, {1, 2, 3}, [])
         mine = ref.replace("namespace rt {\n", "namespace rt {\n// two lines of mine\n// ignored\n", 1)
         mine = mine.replace("    return a + b;", "    int c = a + b;\n    return c;")
@@ -238,7 +248,7 @@ class Regions(unittest.TestCase):
         self.assertEqual(composed.lines[at], mine.split("\n").index("    int c = a + b;") + 1)
         self.assertIn(at, composed.exact)
         self.assertIn('throw rt::exercise_not_done("stage 02: deref: see docs/student-guide.md");', composed.text)
-        self.assertIn('#include "error.hpp"', composed.text)     # the kit's body needs it
+        self.assertIn('#include "core/error.hpp"', composed.text)     # the kit's body needs it
         self.assertIn("    return n;", composed.text)              # region 2: the reference's
         self.assertEqual(splice.outside_differences(student, ref, regions), 7)   # "// two lines of mine"
 
@@ -277,14 +287,14 @@ class Reports(unittest.TestCase):
 
     def test_gradescope_results(self):
         suites = [self.suite(["passed", "crashed"]),
-                  self.suite([], build_error="include/rt/sphere.hpp:4:5: error: expected ';'", hidden=True)]
+                  self.suite([], build_error="include/rt/intersection/sphere.hpp:4:5: error: expected ';'", hidden=True)]
         results = grade.gradescope_results(suites, "after_published", "note", 12.5)
         self.assertEqual(results["score"], 5)
         self.assertEqual(results["execution_time"], 12)
         self.assertEqual([t["visibility"] for t in results["tests"]], ["visible", "after_published"])
         self.assertEqual([t["status"] for t in results["tests"]], ["failed", "failed"])
         self.assertEqual([t["max_score"] for t in results["tests"]], [10, 10])
-        self.assertIn("include/rt/sphere.hpp:4:5: error: expected ';'", results["tests"][1]["output"])
+        self.assertIn("include/rt/intersection/sphere.hpp:4:5: error: expected ';'", results["tests"][1]["output"])
         self.assertIn("case 1: crashed", results["tests"][0]["output"])
         for test in results["tests"]:
             self.assertEqual(set(test), {"name", "number", "score", "max_score", "status", "output", "visibility"})
@@ -317,14 +327,14 @@ class Reports(unittest.TestCase):
             FAILED: tests/CMakeFiles/x.dir/a.cpp.o
             /usr/bin/c++ -I/tmp/w/src/include -c /tmp/w/src/tests/a.cpp
             In file included from /tmp/w/src/tests/a.cpp:3:
-            /tmp/w/src/include/rt/sphere.hpp:42:17: error: expected ';' before 'return'
+            /tmp/w/src/include/rt/intersection/sphere.hpp:42:17: error: expected ';' before 'return'
                42 |     real t = 1
                   |               ^
-            /tmp/w/src/include/rt/sphere.hpp:50:1: error: second error
+            /tmp/w/src/include/rt/intersection/sphere.hpp:50:1: error: second error
             ninja: build stopped: subcommand failed.
         """)
         text = grade.first_compiler_error(log, ["/tmp/w/src"])
-        self.assertTrue(text.startswith("include/rt/sphere.hpp:42:17: error: expected ';' before 'return'"), text)
+        self.assertTrue(text.startswith("include/rt/intersection/sphere.hpp:42:17: error: expected ';' before 'return'"), text)
         self.assertIn("real t = 1", text)
         self.assertNotIn("second error", text)
 

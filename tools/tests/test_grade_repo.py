@@ -78,7 +78,7 @@ class Repository(unittest.TestCase):
     def test_a_compile_error_in_stage_05_costs_stage_05_only(self):
         broken = self.tmp / "broken05"
         shutil.copytree(self.correct, broken)
-        header = broken / "include" / "rt" / "shading.hpp"
+        header = broken / "include" / "rt" / "shading" / "shading.hpp"
         lines = header.read_text().split("\n")
         begin = next(k for k, l in enumerate(lines) if "RT_EXERCISE_BEGIN(stage05:" in l)
         end = next(k for k, l in enumerate(lines) if k > begin and "RT_EXERCISE_END" in l)
@@ -90,7 +90,7 @@ class Repository(unittest.TestCase):
         for name, test in self.by_stage(results).items():
             if name.startswith("Stage 05"):
                 self.assertEqual(test["score"], 0)
-                self.assertRegex(test["output"], rf"include/rt/shading\.hpp:{returns[-1] + 1}:\d+: error:")
+                self.assertRegex(test["output"], rf"include/rt/shading/shading\.hpp:{returns[-1] + 1}:\d+: error:")
             else:
                 self.assertEqual(test["score"], test["max_score"], f"{name}: {test['output'][:2000]}")
         self.assertIn("Each stage judged alone", results["output"])

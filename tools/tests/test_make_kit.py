@@ -374,9 +374,9 @@ class Stripping(unittest.TestCase):
 
     def test_error_header_is_included_once(self):
         out, _ = self.strip(GOOD)
-        self.assertEqual(out.count('#include "error.hpp"'), 1)
+        self.assertEqual(out.count('#include "core/error.hpp"'), 1)
         lines = out.splitlines()
-        self.assertEqual(lines.index('#include "error.hpp" // rt::exercise_not_done (student kit)'),
+        self.assertEqual(lines.index('#include "core/error.hpp" // rt::exercise_not_done (student kit)'),
                          lines.index("#include <string>") + 1)
         already = GOOD.replace("#include <string>", '#include <string>\n    #include "error.hpp"')
         out2, _ = self.strip(already)
@@ -488,8 +488,8 @@ class StrippedBodiesCompile(unittest.TestCase):
         stripped = make_kit.strip_text("include/rt/fixture.hpp", text, regions, {})
         with tempfile.TemporaryDirectory() as tmp:
             rt_dir = Path(tmp, "include", "rt")
-            rt_dir.mkdir(parents=True)
-            shutil.copy(REPO / "include" / "rt" / "error.hpp", rt_dir / "error.hpp")
+            (rt_dir / "core").mkdir(parents=True)
+            shutil.copy(REPO / "include" / "rt" / "core" / "error.hpp", rt_dir / "core" / "error.hpp")
             (rt_dir / "fixture.hpp").write_text(stripped)
             main = Path(tmp, "use.cpp")
             main.write_text('#include <rt/fixture.hpp>\nint main() {\n  rt::counter c(1, 2);\n'
@@ -520,8 +520,8 @@ class SwitchableKit(unittest.TestCase):
             self.skipTest("no C++ compiler")
         with tempfile.TemporaryDirectory() as tmp:
             rt_dir = Path(tmp, "include", "rt")
-            rt_dir.mkdir(parents=True)
-            (rt_dir / "error.hpp").write_text((REPO / "include" / "rt" / "error.hpp").read_text() +
+            (rt_dir / "core").mkdir(parents=True)
+            (rt_dir / "core" / "error.hpp").write_text((REPO / "include" / "rt" / "core" / "error.hpp").read_text() +
                                               make_kit.KIT_CHECK_SWITCH)
             (rt_dir / "fixture.hpp").write_text(switched)
             main = Path(tmp, "use.cpp")
@@ -562,7 +562,7 @@ class Kits(unittest.TestCase):
         self.repo = self.tmp / "repo"
         files = {
             "include/rt/a.hpp": GOOD,
-            "include/rt/error.hpp": "#pragma once\n",
+            "include/rt/core/error.hpp": "#pragma once\n",
             "tests/stage01_one.cpp": "// one\n",
             "tests/stage02_two.cpp": "// two\n",
             "tests/hidden/stage01_secret.cpp": "// hidden\n",

@@ -31,7 +31,7 @@ CASES = r'''
 #include <iostream>
 #include <stdexcept>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 namespace {
 int unwritten_exercise() { throw rt::exercise_not_done("stage 99: a toy exercise: see nowhere"); }

@@ -31,7 +31,7 @@
 // the end of the unit: simd_end.hpp removes only those this file defined
 // (RT_BVH_OWNS_*), so every section sees the user's choice.
 
-#include "../config.hpp" // RT_USE_DOUBLE
+#include "../core/config.hpp" // RT_USE_DOUBLE
 
 #if defined(RT_BVH_AVX2_SECTION)
 // bvh/dispatch.hpp's second section: the 8-wide path, compiled under

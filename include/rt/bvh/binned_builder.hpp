@@ -22,10 +22,10 @@
 #include <utility>
 #include <vector>
 
-#include "../aabb.hpp"
-#include "../config.hpp"
-#include "../parallel.hpp"
-#include "../vec.hpp"
+#include "../core/aabb.hpp"
+#include "../core/config.hpp"
+#include "../system/parallel.hpp"
+#include "../core/vec.hpp"
 #include "build_store.hpp"
 #include "build_options.hpp"
 #include "build_tasks.hpp"

@@ -21,11 +21,11 @@
 
 #include <cmath>
 
-#include "../aabb.hpp"
-#include "../ray.hpp"
-#include "../rounding.hpp"
-#include "../slab.hpp" // slab_robust_far_factor, Ize's 1 + 2 gamma_3
-#include "../vec.hpp"
+#include "../core/aabb.hpp"
+#include "../core/ray.hpp"
+#include "../core/rounding.hpp"
+#include "../intersection/slab.hpp" // slab_robust_far_factor, Ize's 1 + 2 gamma_3
+#include "../core/vec.hpp"
 
 namespace rt {
 

@@ -10,9 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "../aabb.hpp"
-#include "../config.hpp"
-#include "../vec.hpp"
+#include "../core/aabb.hpp"
+#include "../core/config.hpp"
+#include "../core/vec.hpp"
 
 namespace rt {
 

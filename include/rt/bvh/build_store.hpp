@@ -28,7 +28,7 @@
 #include <cstdint>
 #include <mutex>
 
-#include "../error.hpp"
+#include "../core/error.hpp"
 #include "build_options.hpp"
 #include "builtins.hpp"
 #include "parallel_fill.hpp"

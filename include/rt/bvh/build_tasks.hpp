@@ -28,7 +28,7 @@
 #include <exception>
 #include <mutex>
 
-#include "../parallel.hpp"
+#include "../system/parallel.hpp"
 
 namespace rt {
 namespace detail {

@@ -29,6 +29,7 @@
 //   hit_fill.hpp        a hit's record from its block (SSE), for rt::accelerator
 //   bvh.hpp             this file: build, then closest_hit() and any_hit()
 //   dispatch.hpp        the 8-wide path again, for AVX2 CPUs, in a unit built without AVX2
+//   accelerator.hpp     rt::accelerator: a scene's shapes behind the BVH or a flat list
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
 //     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
@@ -57,10 +58,10 @@
 #include <utility>
 #include <vector>
 
-#include "../aabb.hpp"
-#include "../error.hpp"
-#include "../ray.hpp"
-#include "../watertight.hpp"
+#include "../core/aabb.hpp"
+#include "../core/error.hpp"
+#include "../core/ray.hpp"
+#include "../intersection/watertight.hpp"
 #include "binned_builder.hpp"
 #include "build_tasks.hpp"
 #include "build_options.hpp"

@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "../config.hpp"
+#include "../core/config.hpp"
 #include "layout.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp

@@ -13,12 +13,12 @@
 // BVH's records with the flat list's, field for field.
 #pragma once
 
-#include "../config.hpp"
-#include "../hit_record.hpp"
-#include "../ray.hpp"
-#include "../rounding.hpp"
-#include "../triangle_shape.hpp"
-#include "../vec.hpp"
+#include "../core/config.hpp"
+#include "../core/hit_record.hpp"
+#include "../core/ray.hpp"
+#include "../core/rounding.hpp"
+#include "../scene/triangle_shape.hpp"
+#include "../core/vec.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_SSE, RT_BVH_INLINE and the intrinsics, until simd_end.hpp
 

@@ -27,9 +27,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "../config.hpp"
-#include "../triangle_shape.hpp"
-#include "../vec.hpp"
+#include "../core/config.hpp"
+#include "../scene/triangle_shape.hpp"
+#include "../core/vec.hpp"
 #include "packed.hpp"
 
 #include "simd_begin.hpp" // RT_BVH_AVX, RT_BVH_AVX2 and the intrinsics, until simd_end.hpp

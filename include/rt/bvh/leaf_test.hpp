@@ -15,9 +15,9 @@
 #include <cstdint>
 #include <limits>
 
-#include "../config.hpp"
-#include "../rounding.hpp"
-#include "../watertight.hpp"
+#include "../core/config.hpp"
+#include "../core/rounding.hpp"
+#include "../intersection/watertight.hpp"
 #include "layout.hpp"
 #include "packed.hpp"
 

@@ -12,8 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "../config.hpp"
-#include "../ray.hpp"
+#include "../core/config.hpp"
+#include "../core/ray.hpp"
 #include "box_test.hpp"
 #include "layout.hpp"
 

@@ -16,13 +16,13 @@
 #include <limits>
 #include <vector>
 
-#include "../aabb.hpp"
-#include "../hit_record.hpp"
-#include "../ray.hpp"
-#include "../rounding.hpp"
-#include "../sphere_stable.hpp"
-#include "../vec.hpp"
-#include "../watertight.hpp"
+#include "../core/aabb.hpp"
+#include "../core/hit_record.hpp"
+#include "../core/ray.hpp"
+#include "../core/rounding.hpp"
+#include "../intersection/sphere_stable.hpp"
+#include "../core/vec.hpp"
+#include "../intersection/watertight.hpp"
 
 namespace rt {
 

@@ -34,8 +34,8 @@
 #include <utility>
 #include <vector>
 
-#include "../parallel.hpp"
-#include "../platform_pages.hpp"
+#include "../system/parallel.hpp"
+#include "../system/platform_pages.hpp"
 
 namespace rt {
 namespace detail {

@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "../aabb.hpp"
-#include "../config.hpp"
-#include "../vec.hpp"
+#include "../core/aabb.hpp"
+#include "../core/config.hpp"
+#include "../core/vec.hpp"
 #include "build_options.hpp"
 #include "packed.hpp"
 

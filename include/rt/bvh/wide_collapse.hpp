@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "../aabb.hpp"
+#include "../core/aabb.hpp"
 #include "build_store.hpp"
 #include "build_options.hpp"
 #include "layout.hpp"

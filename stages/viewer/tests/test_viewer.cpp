@@ -19,12 +19,12 @@
 #include <thread>
 #include <vector>
 
-#include <rt/camera.hpp>
-#include <rt/image.hpp>
-#include <rt/render_setup.hpp>
-#include <rt/renderer.hpp>
-#include <rt/sampler.hpp>
-#include <rt/scene.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/core/image.hpp>
+#include <rt/rendering/render_setup.hpp>
+#include <rt/rendering/renderer.hpp>
+#include <rt/rendering/sampler.hpp>
+#include <rt/scene/scene.hpp>
 
 #include "camera_control.hpp"
 #include "inspector.hpp"

@@ -15,8 +15,8 @@
 #include <ostream>
 #include <type_traits>
 
-#if __has_include(<rt/hit_list.hpp>)
-#include <rt/hit_list.hpp>
+#if __has_include(<rt/intersection/hit_list.hpp>)
+#include <rt/intersection/hit_list.hpp>
 #endif
 
 #include "wire.hpp"

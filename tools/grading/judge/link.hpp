@@ -32,7 +32,7 @@
 #include <poll.h>
 #include <unistd.h>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 #include "wire.hpp"
 

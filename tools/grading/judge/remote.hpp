@@ -44,7 +44,7 @@ class peer;
 /// This program's peer (defined once in each program).
 peer& current_peer();
 
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
 template <class C, class = void>
 struct has_closest_hit : std::false_type {};
 template <class C>
@@ -147,7 +147,7 @@ struct call_context {
     std::shared_ptr<void>& kept_copy() const { return (*kept)[(std::uint64_t(id) << 8) | index]; }
 };
 
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
 template <>
 struct never_kept<shading_options> : std::true_type {};   // it points at a generator the callee draws from
 #endif
@@ -216,7 +216,7 @@ struct holder<P, std::enable_if_t<is_stream<P>>> {
     void write(writer& out) const { out.put(value.str()); }
 };
 
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
 template <class P>
 struct holder<P, std::enable_if_t<std::is_same<bare<P>, statement>::value>> {
     statement value = blank_statement();
@@ -382,7 +382,7 @@ private:
         (std::get<I>(held).read(in, call_context{link_, &kept_, id, I}), ...);
         if (!in.done())
             throw wire_error("a call longer than its arguments");
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
         struct restore {
             shape_hit_target value;
             ~restore() { current_shape_hit() = value; }
@@ -434,7 +434,7 @@ private:
     template <class P, class A>
     static void receive(reader& in, A& argument)
     {
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
         if constexpr (std::is_same<bare<P>, shading_options>::value) {
             // the generator the options point at was drawn from: its state comes back
             const bool drew = in.get<bool>();
@@ -468,7 +468,7 @@ private:
     template <class C, class A>
     std::uint32_t enlist(A& argument)
     {
-#if __has_include(<rt/hit_list.hpp>)
+#if __has_include(<rt/intersection/hit_list.hpp>)
         if constexpr (std::is_same<C, shape_hit_function>::value) {
             if (argument == &hit_shape)
                 return own_hit_shape;

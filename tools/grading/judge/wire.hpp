@@ -28,23 +28,23 @@
 #include <variant>
 #include <vector>
 
-#include <rt/error.hpp>
+#include <rt/core/error.hpp>
 
 // rt's own types, when the reference is rt (the grader's tests use a small
 // reference of ints alone, which has none of these headers)
-#if __has_include(<rt/scene.hpp>)
-#include <rt/adaptive.hpp>
-#include <rt/camera.hpp>
-#include <rt/emitters.hpp>
-#include <rt/groups.hpp>
-#include <rt/image.hpp>
-#include <rt/lambertian.hpp>
-#include <rt/light.hpp>
-#include <rt/mis.hpp>
-#include <rt/random.hpp>
-#include <rt/scene.hpp>
-#include <rt/scene_statement.hpp>
-#include <rt/shading.hpp>
+#if __has_include(<rt/scene/scene.hpp>)
+#include <rt/path_tracing/adaptive.hpp>
+#include <rt/camera/camera.hpp>
+#include <rt/path_tracing/emitters.hpp>
+#include <rt/intersection/groups.hpp>
+#include <rt/core/image.hpp>
+#include <rt/path_tracing/lambertian.hpp>
+#include <rt/scene/light.hpp>
+#include <rt/path_tracing/mis.hpp>
+#include <rt/core/random.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/input/scene_statement.hpp>
+#include <rt/shading/shading.hpp>
 #endif
 
 namespace rt {
@@ -248,7 +248,7 @@ struct wire<T, std::void_t<decltype(sizeof(fields<T>))>> {
     }
 };
 
-#if __has_include(<rt/scene.hpp>)
+#if __has_include(<rt/scene/scene.hpp>)
 template <> struct enum_size<projection> { static constexpr int value = 2; };
 template <> struct enum_size<light_kind> { static constexpr int value = 4; };
 template <> struct enum_size<path_strategy> { static constexpr int value = 4; };

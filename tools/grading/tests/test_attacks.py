@@ -40,7 +40,7 @@ from grade_fixture import have_build_tools, private_copy, run_as_arguments, scan
 SECRET = "hidden-suite-secret-5c1e9"
 HIDDEN_SUITE = f"""// {SECRET}: no submission may read this
 #include <doctest/doctest.h>
-#include <rt/sphere.hpp>
+#include <rt/intersection/sphere.hpp>
 TEST_CASE("hidden: a ray from the origin along -z meets the unit sphere at z = -5 at t = 4")
 {{
     rt::sphere s;
@@ -85,7 +85,7 @@ class Attacks(unittest.TestCase):
                       "--work", str(cls.tmp / "work"), "--weights", str(weights), "--stages", "3,4"] + run_as_arguments()
         code, log = cls.quiet(["--calibrate"] + cls.common)
         assert code == 0, "the cache could not be made:\n" + log
-        cls.sphere = (cls.reference / "include" / "rt" / "sphere.hpp").read_text()
+        cls.sphere = (cls.reference / "include" / "rt" / "intersection" / "sphere.hpp").read_text()
         lines, begin, end = sphere_region(cls.sphere)
         # what may never be seen: the reference's body of the region, line by line
         cls.secrets = [SECRET] + [l.strip() for l in lines[begin + 1:end]
@@ -111,7 +111,7 @@ class Attacks(unittest.TestCase):
         shutil.copytree(cls.reference / "include" / "rt", folder / "include" / "rt")
         lines, begin, end = sphere_region(cls.sphere)
         text = "\n".join(lines[:begin + 1] + body + lines[end:])
-        (folder / "include" / "rt" / "sphere.hpp").write_bytes(text.encode("utf-8"))
+        (folder / "include" / "rt" / "intersection" / "sphere.hpp").write_bytes(text.encode("utf-8"))
         return folder
 
     @classmethod
@@ -194,7 +194,7 @@ class Attacks(unittest.TestCase):
                          builds=False)   # gnu++17, as the kit builds: trigraphs are off
 
     def test_reading_the_graders_files(self):
-        source = self.reference / "include" / "rt" / "sphere.hpp"
+        source = self.reference / "include" / "rt" / "intersection" / "sphere.hpp"
         hidden = self.tmp / "hidden" / "stage03_secret.cpp"
         for path in (source, hidden, self.cache / "judge" / "cases.json"):
             with self.subTest(path=path.name):
@@ -213,10 +213,10 @@ class Attacks(unittest.TestCase):
         before = hashlib.sha256(cases.read_bytes()).hexdigest()
         self.assert_held([
             f"    if (std::FILE* f = std::fopen(\"{cases}\", \"wb\")) {{ std::fputs(\"{{}}\", f); std::fclose(f); }}",
-            f"    std::remove(\"{self.reference / 'include' / 'rt' / 'sphere.hpp'}\");"] + HONEST_FAILING,
+            f"    std::remove(\"{self.reference / 'include' / 'rt' / 'intersection' / 'sphere.hpp'}\");"] + HONEST_FAILING,
             scanner_too=False)
         self.assertEqual(hashlib.sha256(cases.read_bytes()).hexdigest(), before)
-        self.assertTrue((self.reference / "include" / "rt" / "sphere.hpp").is_file())
+        self.assertTrue((self.reference / "include" / "rt" / "intersection" / "sphere.hpp").is_file())
 
     @unittest.skipUnless(os.uname().machine == "x86_64", "the attack makes x86-64 system calls")
     def test_cross_submission_interference(self):

@@ -22,7 +22,7 @@ import planted_mistakes  # noqa: E402
 from grading import lexer, splice  # noqa: E402
 
 FX = "include/rt/fx.hpp"
-ONE_LINE = re.compile(r"^include/rt/[\w.]+\.hpp:\d+:\d+: expected [^\n]+, found [^\n]+; [^\n]+$")
+ONE_LINE = re.compile(r"^include/rt/[\w./]+\.hpp:\d+:\d+: expected [^\n]+, found [^\n]+; [^\n]+$")
 
 
 def check(*lines: str, rel: str = FX, first: int = 10) -> str:
@@ -336,7 +336,7 @@ class Casts(Case):
 
 class PpmWriter(Case):
     """Stage 02's PPM writer gets the stream members and the one cast it needs; no other region."""
-    PPM = "include/rt/image_io.hpp"
+    PPM = "include/rt/output/image_io.hpp"
 
     def test_the_writer_gets_write_put_and_its_cast(self):
         self.accepted("out << \"P6\\n\" << img.width << ' ' << img.height << \"\\n255\\n\" << std::endl;",

@@ -1,0 +1,9 @@
+// rt/camera_model.hpp - a forwarder for one release (0.2): the header moved to scene/.
+// Include <rt/scene/camera_model.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/camera_model.hpp> is deprecated: include <rt/scene/camera_model.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/camera_model.hpp> is deprecated: include <rt/scene/camera_model.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/scene/camera_model.hpp>

@@ -1,0 +1,9 @@
+// rt/decimal_text.hpp - a forwarder for one release (0.2): the header moved to core/.
+// Include <rt/core/decimal_text.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/decimal_text.hpp> is deprecated: include <rt/core/decimal_text.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/decimal_text.hpp> is deprecated: include <rt/core/decimal_text.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/core/decimal_text.hpp>

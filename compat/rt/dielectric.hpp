@@ -1,0 +1,9 @@
+// rt/dielectric.hpp - a forwarder for one release (0.2): the header moved to shading/.
+// Include <rt/shading/dielectric.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/dielectric.hpp> is deprecated: include <rt/shading/dielectric.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/dielectric.hpp> is deprecated: include <rt/shading/dielectric.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/shading/dielectric.hpp>

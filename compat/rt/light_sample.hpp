@@ -1,0 +1,9 @@
+// rt/light_sample.hpp - a forwarder for one release (0.2): the header moved to scene/.
+// Include <rt/scene/light_sample.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/light_sample.hpp> is deprecated: include <rt/scene/light_sample.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/light_sample.hpp> is deprecated: include <rt/scene/light_sample.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/scene/light_sample.hpp>

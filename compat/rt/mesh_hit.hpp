@@ -1,0 +1,9 @@
+// rt/mesh_hit.hpp - a forwarder for one release (0.2): the header moved to intersection/.
+// Include <rt/intersection/mesh_hit.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/mesh_hit.hpp> is deprecated: include <rt/intersection/mesh_hit.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/mesh_hit.hpp> is deprecated: include <rt/intersection/mesh_hit.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/intersection/mesh_hit.hpp>

@@ -1,0 +1,9 @@
+// rt/mtl_reader.hpp - a forwarder for one release (0.2): the header moved to input/.
+// Include <rt/input/mtl_reader.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/mtl_reader.hpp> is deprecated: include <rt/input/mtl_reader.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/mtl_reader.hpp> is deprecated: include <rt/input/mtl_reader.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/input/mtl_reader.hpp>

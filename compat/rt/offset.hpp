@@ -1,0 +1,9 @@
+// rt/offset.hpp - a forwarder for one release (0.2): the header moved to intersection/.
+// Include <rt/intersection/offset.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/offset.hpp> is deprecated: include <rt/intersection/offset.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/offset.hpp> is deprecated: include <rt/intersection/offset.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/intersection/offset.hpp>

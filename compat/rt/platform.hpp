@@ -1,0 +1,9 @@
+// rt/platform.hpp - a forwarder for one release (0.2): the header moved to system/.
+// Include <rt/system/platform.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/platform.hpp> is deprecated: include <rt/system/platform.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/platform.hpp> is deprecated: include <rt/system/platform.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/system/platform.hpp>

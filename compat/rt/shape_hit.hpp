@@ -1,0 +1,9 @@
+// rt/shape_hit.hpp - a forwarder for one release (0.2): the header moved to intersection/.
+// Include <rt/intersection/shape_hit.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/shape_hit.hpp> is deprecated: include <rt/intersection/shape_hit.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/shape_hit.hpp> is deprecated: include <rt/intersection/shape_hit.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/intersection/shape_hit.hpp>

@@ -1,0 +1,9 @@
+// rt/temporary_file.hpp - a forwarder for one release (0.2): the header moved to system/.
+// Include <rt/system/temporary_file.hpp> instead. Nothing else is here, and it defines no macro.
+#pragma once
+#if defined(_MSC_VER) && !defined(__clang__)
+#pragma message("<rt/temporary_file.hpp> is deprecated: include <rt/system/temporary_file.hpp> (CHANGELOG.md, 0.2.0)")
+#else
+#warning "<rt/temporary_file.hpp> is deprecated: include <rt/system/temporary_file.hpp> (CHANGELOG.md, 0.2.0)"
+#endif
+#include <rt/system/temporary_file.hpp>
