@@ -14,11 +14,11 @@ test -f "$work/prefix/include/rt/rt.hpp"
 test -f "$work/prefix/include/rt/vec.hpp" # the old flat paths' forwarders, for one release (CHANGELOG.md)
 find "$work/prefix" -name rtConfig.cmake | grep -q .
 
-echo "== consumer: the README's code example, as written there"
+echo "== consumer: docs/library.md's code example, as written there"
 # the first ```cpp block after the readme-example marker
 awk '/<!-- readme-example/ {armed = 1; next} armed && /^```cpp/ {on = 1; next} on && /^```/ {exit} on {print}' \
-    "$root/README.md" > "$work/readme_example.cpp"
-test -s "$work/readme_example.cpp" || { echo "README.md: no readme-example code block found" >&2; exit 1; }
+    "$root/docs/library.md" > "$work/readme_example.cpp"
+test -s "$work/readme_example.cpp" || { echo "docs/library.md: no readme-example code block found" >&2; exit 1; }
 
 echo "== consumer: find_package(rt CONFIG REQUIRED)"
 cmake -S "$root/tests/consumer" -B "$work/installed" -DCMAKE_PREFIX_PATH="$work/prefix" \

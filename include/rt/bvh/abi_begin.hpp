@@ -111,8 +111,8 @@
 // RT_BVH_DISPATCH_AVX512: a dispatching unit of g++ or clang++ also compiles
 // the 8-wide path a third time, for CPUs with AVX-512 (F, VL, BW, DQ, CD):
 // the same operations on 256-bit registers, 32 of them, not 16, and with
-// AVX-512's forms of them (as -march=native gives an AVX-512 machine: the
-// walk 0-5% faster, docs/performance.md, "The path picked at run time").
+// AVX-512's forms of them (as -march=native gives an AVX-512 machine; what
+// that buys: docs/performance.md, "The path picked at run time").
 // MSVC gets no third section: it would not use those registers without /arch.
 #if RT_BVH_DISPATCH && (defined(__GNUC__) || defined(__clang__))
 #define RT_BVH_DISPATCH_AVX512 1

@@ -31,9 +31,9 @@
 //    too), under the same target plus AVX-512 F, VL, BW, DQ and CD: the same
 //    256-bit operations with 32 registers, not 16, and AVX-512's forms of
 //    some, which an AVX-512 machine's -march=native build had had alone
-//    (0-5% faster there; the AVX2 section alone ran the Cornell box's shadow
-//    rays at 0.94 of such a build, this one at 1.0: docs/performance.md,
-//    "The path picked at run time"). rt::accelerator walks it where
+//    (without this section the AVX2 one fell behind such a build on the
+//    Cornell box's shadow rays: docs/performance.md, "The path picked at
+//    run time"). rt::accelerator walks it where
 //    detail::cpu_runs_avx512() says yes.
 //
 // Why it is safe:

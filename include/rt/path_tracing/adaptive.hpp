@@ -9,9 +9,9 @@
 // (luminance below), with s1 = sum x_k and s2 = sum x_k^2:
 //     mu = s1 / n,   sigma^2 = (s2 - s1^2 / n) / (n - 1),
 //     I = 1.96 sigma / sqrt(n),
-// the half-width of the 95% confidence interval of the mean (the central
-// limit theorem). The pixel has converged when I <= max_tolerance mu: the
-// true mean lies, with 95% confidence, within max_tolerance of mu, relatively.
+// the half-width of the confidence interval of level 0.95 of the mean (the
+// central limit theorem). The pixel has converged when I <= max_tolerance mu:
+// the true mean lies, at that level, within max_tolerance of mu, relatively.
 //
 //     rt::pixel_statistics stats; stats.add(rt::luminance(L));
 //     if (n % batch == 0 && rt::pixel_converged(stats, max_tolerance)) stop;

@@ -64,7 +64,7 @@ inline std::string format_count(double count)
     return out.str();
 }
 
-/// "[#######.............]  35%  elapsed 1.20 s  ETA 2.23 s  4.56 Mrays/s"
+/// "[#######.............]  P%  elapsed E s  ETA T s  R Mrays/s", each letter a number
 inline std::string progress_line(const render_progress& p, int bar_width = 24)
 {
     const double fraction = p.pixels_total > 0 ? double(p.pixels_done) / double(p.pixels_total) : 1.0;
@@ -83,7 +83,7 @@ inline std::string progress_line(const render_progress& p, int bar_width = 24)
 
 } // namespace detail
 
-/// "rendered 640x360 at 16 spp on 2 threads: 3.69 Mrays in 2.31 s (1.60 Mrays/s)"
+/// "rendered 640x360 at 16 spp on 2 threads: N Mrays in T s (R Mrays/s)", N, T and R numbers
 inline std::string summary_line(const render_stats& s)
 {
     const double rays = double(s.camera_rays + s.extra_rays);

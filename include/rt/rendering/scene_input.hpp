@@ -110,7 +110,7 @@ inline scene scene_from_obj(const std::filesystem::path& path, int nx, int ny, c
     const vec3 centre = box.center();
     const real radius = std::max(glm::length(box.extent()) / 2, real(1e-6));
     const real fov = 40;
-    // the bounding sphere fits the narrower of the two fields of view, with a 10% margin
+    // the bounding sphere fits the narrower of the two fields of view, with a margin of a tenth
     const real half =
         std::min(fov / 2 * pi / 180, std::atan(std::tan(fov / 2 * pi / 180) * real(s.width) / real(s.height)));
     const real distance = real(1.1) * radius / std::sin(half);
