@@ -10,7 +10,8 @@ The copies are generated blocks, each between
 and <!-- end generated -->:
   - README.md: the table, with what the library does instead of the textbook;
   - tools/kit/README.md (a kit's README): the table, for the student;
-  - DEVELOPERS.md: the course order on one line.
+  - DEVELOPERS.md: the course order on one line;
+  - tools/kit/DEVELOPERS.md (a kit's): the core's order on one line.
 Edit docs/stages/stages.tsv, then run --write. The list is checked too: stages
 numbered 01, 02, ... in order, each with its program's folder under stages/ and
 its page under docs/stages/. In a student kit (no tools/make_kit.py) there is
@@ -86,16 +87,24 @@ def table(rows: list, with_library: bool) -> str:
     return "\n".join(lines)
 
 
-def course_line(rows: list) -> str:
-    core = " -> ".join(f"{r['stage']} {r['name']}" for r in rows if not r["part"])
-    further = " -> ".join(f"{r['stage']} {r['name']}" for r in rows if r["part"])
-    return core + (f", then, going further, {further}" if further else "") + "."
+def course_line(rows: list, core_only: bool = False) -> str:
+    """01 load scene -> 02 generate rays -> ..., then, going further, 09 ... (or, core_only,
+    the core and where the rest is)."""
+    core = [r for r in rows if not r["part"]]
+    further = [r for r in rows if r["part"]]
+    line = " -> ".join(f"{r['stage']} {r['name']}" for r in core)
+    if further and core_only:
+        line += f"; going further: [the stage pages](docs/stages/) from {further[0]['stage']} on"
+    elif further:
+        line += ", then, going further, " + " -> ".join(f"{r['stage']} {r['name']}" for r in further)
+    return line + "."
 
 
 COPIES = {
     "README.md": lambda rows: table(rows, with_library=True),
     "tools/kit/README.md": lambda rows: table(rows, with_library=False),
     "DEVELOPERS.md": course_line,
+    "tools/kit/DEVELOPERS.md": lambda rows: course_line(rows, core_only=True),
 }
 
 

@@ -27,14 +27,14 @@ namespace rt {
 /// The textbook quadratic, exactly as the course gives it: the nearest root t
 /// in the closed interval [tmin, tmax] (the smaller root if it is inside, else
 /// the larger); on a hit, fills the record by calling the given
-/// fill_sphere_record(s, r, t, rec) (sphere_shape.hpp); on a miss returns false
+/// fill_sphere_record(s, r, t, rec) (scene/sphere_shape.hpp); on a miss returns false
 /// and leaves the record untouched. A ray with d = 0 misses. Kept for
 /// teaching and for comparison; the library uses hit_sphere.
 inline bool hit_sphere_textbook(const sphere& s, const ray& r, real tmin, real tmax, hit_record& rec)
 {
     // RT_EXERCISE_BEGIN(stage03: ray-sphere intersection)
     // Hint: solve the quadratic for the nearest root t in [tmin, tmax]; then the
-    //   given fill_sphere_record(s, r, t, rec) (sphere_shape.hpp) fills the record.
+    //   given fill_sphere_record(s, r, t, rec) (scene/sphere_shape.hpp) fills the record.
     const vec3& p = r.origin;
     const vec3& d = r.direction;
     const vec3& c = s.center;
