@@ -3,6 +3,7 @@
 // stderr and a non-zero exit.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -12,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include <rt/system/atomic_file.hpp>
 #include <rt/core/error.hpp>
+#include <rt/scene/scene.hpp>
+#include <rt/system/atomic_file.hpp>
 #include <rt/system/os_error.hpp>
 #include <rt/system/platform.hpp>
 
@@ -118,6 +120,26 @@ inline void check_input_and_outputs(const std::string& input, const std::string&
 {
     rt::check_readable(file_argument(input), what);
     rt::check_not_input(outputs, {file_argument(input)});
+}
+
+/// check_input_and_outputs, after checking that each output can be written:
+/// a program that writes several files fails before the work, not after it.
+inline void check_writable_outputs(const std::string& input, const std::string& what,
+                                   const std::vector<std::filesystem::path>& outputs)
+{
+    for (const std::filesystem::path& output : outputs)
+        rt::check_writable(output);
+    check_input_and_outputs(input, what, outputs);
+}
+
+/// After the load: no output is a file the scene read (its OBJ and MTL files),
+/// and `bytes` of images fit the memory limit (`what` names them in the error).
+inline void check_after_load(const std::string& input, const rt::scene& s,
+                             const std::vector<std::filesystem::path>& outputs, std::uint64_t bytes,
+                             const std::string& what)
+{
+    rt::check_not_input(outputs, rt::files_read(file_argument(input), s));
+    rt::check_memory_for(bytes, what);
 }
 
 } // namespace stage
