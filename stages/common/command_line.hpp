@@ -151,6 +151,16 @@ inline double parse_number(const std::string& option, const std::string& text, d
     return value;
 }
 
+/// WxH such as 800x600, each side 1 to 16384, into width and height.
+inline void parse_size(const std::string& option, const std::string& text, int& width, int& height)
+{
+    const std::size_t x = text.find('x');
+    if (x == std::string::npos)
+        throw option_error(option, "WxH such as 800x600", text);
+    width = int(parse_integer(option + " (width)", text.substr(0, x), 1, 16384));
+    height = int(parse_integer(option + " (height)", text.substr(x + 1), 1, 16384));
+}
+
 /// One of `choices`, spelled exactly.
 inline std::string parse_choice(const std::string& option, const std::string& text,
                                 std::initializer_list<const char*> choices)
