@@ -270,3 +270,67 @@ TEST_CASE("CS184's adaptive rule stops lit pixels black after one batch with BSD
     INFO("expected none with next-event estimation, found " << stopped_black[1]);
     CHECK(stopped_black[1] == 0);
 }
+
+TEST_CASE("an observer hears a path without changing it: the story adds up to the radiance, the rays to its count")
+{
+    const rt::scene s = path_scenes::small_cornell();
+    const rt::accelerator accel(s);
+    const rt::emitter_list lights = rt::find_emitters(s);
+    const path_scenes::pinhole camera{8};
+    int told = 0;
+    for (const rt::path_strategy strategy : {rt::path_strategy::cosine, rt::path_strategy::mis}) {
+        rt::path_options o;
+        o.strategy = strategy;
+        for (int pixel = 0; pixel < 64; ++pixel) {
+            const rt::ray r = camera(rt::real(pixel % 8) + rt::real(0.5), rt::real(pixel / 8) + rt::real(0.5));
+            auto rng = [&] { return rt::seeded_generator(7, std::uint64_t(pixel), 1, rt::integrator_stream); };
+            rt::pcg32 plain_rng = rng(), story_rng = rng(), count_rng = rng(), old_rng = rng();
+            const rt::color plain = rt::path_radiance(s, accel, lights, r, plain_rng, o);
+            rt::path_story story;
+            const rt::color told_L =
+                rt::path_radiance(s, accel, lights, r, story_rng, o, rt::path_story_recorder{&story});
+            std::uint64_t rays = 0;
+            const rt::color counted = rt::path_radiance(s, accel, lights, r, count_rng, o, rt::ray_count_observer{&rays});
+            INFO("strategy " << rt::name_of(strategy) << ", pixel " << pixel << ": expected the same radiance with "
+                 << "and without an observer (it draws no random number), found " << plain << ", " << told_L << ", "
+                 << counted);
+            REQUIRE(plain == told_L);
+            REQUIRE(plain == counted);
+            // the story: each point's contribution, in the loop's order, then the background's
+            rt::color sum(0.0f);
+            std::uint64_t shadow_rays = 0;
+            for (const rt::path_vertex& v : story.vertices) {
+                sum += v.added;
+                shadow_rays += v.light_sampled && v.light_estimate != rt::color(0.0f) ? 1 : 0;
+            }
+            sum += story.background_added;
+            CHECK(story.radiance == plain);
+            INFO("expected the points' contributions and the background's to add up to the radiance, found " << sum
+                 << " against " << plain);
+            CHECK(sum == plain);
+            // one ray for each point after the first, one more for a path that left, and the shadow rays
+            const std::uint64_t bounce_rays = story.vertices.size() + (story.escaped ? 1 : 0) - 1;
+            INFO("expected " << bounce_rays << " bounce and " << shadow_rays << " shadow rays, counted " << rays);
+            CHECK(rays == bounce_rays + shadow_rays);
+            CHECK_FALSE(story.ending.empty());
+            // the form before observers (0.1) still works for one release, and tells the same
+#if defined(__GNUC__) || defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#endif
+            rt::path_story old_story;
+            std::uint64_t old_rays = 0;
+            const rt::color old_L = rt::path_radiance(s, accel, lights, r, old_rng, o, &old_story, &old_rays);
+#if defined(__GNUC__) || defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+            CHECK(old_L == plain);
+            CHECK(old_rays == rays);
+            CHECK(old_story.vertices.size() == story.vertices.size());
+            CHECK(old_story.ending == story.ending);
+            told += story.vertices.size() > 1 ? 1 : 0;
+        }
+    }
+    INFO("expected paths of more than one point among the 128, found " << told);
+    CHECK(told > 0);
+}

@@ -43,6 +43,8 @@
 #include "intersection/offset.hpp"
 #include "system/os_error.hpp"
 #include "system/parallel.hpp"
+#include "path_tracing/path_observer.hpp"
+#include "path_tracing/path_story.hpp"
 #include "path_tracing/path_tracer.hpp"
 #include "camera/pixel_sampling.hpp"
 #include "rendering/progress.hpp"

@@ -181,7 +181,7 @@ int main(int argc, char** argv)
             const rt::real fx = rng.next_float(), fy = rng.next_float();
             const rt::ray camera = rays(rt::real(pixel.column) + fx, rt::real(s.height - 1 - pixel.row) + fy);
             rt::path_story story;
-            (void)rt::path_radiance(s, accel, lights, camera, rng, options.path, &story);
+            (void)rt::path_radiance(s, accel, lights, camera, rng, options.path, rt::path_story_recorder{&story});
             if (pixel.json)
                 print_story_json(std::cout, story, s, pixel.column, pixel.row);
             else

@@ -22,13 +22,17 @@
 //     const rt::emitter_list lights = rt::find_emitters(s);
 //     rt::pcg32 rng = ...;
 //     rt::color L = rt::path_radiance(s, accel, lights, camera_ray, rng, options);
+//
+// A program that wants to know what the path did passes an observer
+// (path_observer.hpp): rt::path_story_recorder{&story} writes it down for
+// stage 11's --pixel, rt::ray_count_observer{&rays} counts its rays.
 #pragma once
 
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <string>
+#include <type_traits>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -43,6 +47,8 @@
 #include "../scene/material.hpp"
 #include "mis.hpp"
 #include "next_event.hpp"
+#include "path_observer.hpp"
+#include "path_story.hpp"
 #include "../system/parallel.hpp"
 #include "../core/random.hpp"
 #include "../core/ray.hpp"
@@ -61,70 +67,35 @@ struct path_options {
     int roulette_start = rt::roulette_start;
 };
 
-/// One point of a path, for its story (stage 11's --pixel).
-struct path_vertex {
-    vec3 point{0};
-    vec3 normal{0};
-    int material = -1;
-    color throughput{1.0f};   ///< arriving here
-    color emitted{0.0f};      ///< Le of the surface (0: none)
-    real emitted_weight = 0;  ///< its weight (mis.hpp)
-    bool light_sampled = false;
-    vec3 light_point{0};
-    bool light_visible = false;
-    color light_estimate{0.0f};  ///< next_event_estimate, before its weight
-    real light_weight = 0;
-    bool bounced = false;        ///< a next direction was drawn
-    vec3 direction{0};
-    real pdf = 0;
-    color weight{0.0f};          ///< f cos / pdf
-    bool roulette_played = false;
-    bool survived = true;
-    color added{0.0f};           ///< what this point added to the pixel
-};
-
-/// A path's story: its points, how it ended, and its radiance.
-struct path_story {
-    std::vector<path_vertex> vertices;
-    bool escaped = false;        ///< it left the scene
-    color background_added{0.0f};
-    std::string ending;          ///< in words
-    color radiance{0.0f};
-};
-
 /// The radiance the path of `camera_ray` brings back (see the top of this
-/// file), with random numbers from `rng`; `story`, when given, records it;
-/// `rays`, when given, counts the rays traced after the camera ray.
-template <class Accelerator>
+/// file), with random numbers from `rng`. `observe` hears each step of the
+/// path (path_observer.hpp: the story of stage 11's --pixel, a count of rays);
+/// the default hears nothing.
+template <class Accelerator, class Observer = no_path_observer,
+          class = std::enable_if_t<!std::is_pointer_v<std::decay_t<Observer>> &&
+                                   !std::is_null_pointer_v<std::decay_t<Observer>>>>
 color path_radiance(const scene& s, const Accelerator& accel, const emitter_list& lights, const ray& camera_ray,
-                    pcg32& rng, const path_options& o, path_story* story = nullptr, std::uint64_t* rays = nullptr)
+                    pcg32& rng, const path_options& o, Observer&& observe = Observer{})
 {
     const real infinite = std::numeric_limits<real>::infinity();
     const bool aim = samples_lights(o.strategy) && !lights.empty();
     color L(0.0f), throughput(1.0f);
     ray r = camera_ray;
     real pdf_before = 0; // the density of the direction that led here
-    std::uint64_t traced = 0;
     for (int bounce = 0;; ++bounce) {
         hit_record hit;
         if (bounce > 0)
-            ++traced;
+            observe.ray_traced();
         if (!accel.closest_hit(r, 0, infinite, hit)) {
-            const color added = throughput * s.background;
-            L += added;
-            if (story) {
-                story->escaped = true;
-                story->background_added = added;
-                story->ending = "left the scene: the background";
-            }
-            break;
+            L += throughput * s.background;
+            observe.end(path_end::escaped, throughput * s.background, L);
+            return L;
         }
+        observe.surface(hit, throughput);
         const material& m = s.material_of(hit.material);
-        path_vertex v;
-        v.point = hit.point;
-        v.normal = hit.normal;
-        v.material = hit.material;
-        v.throughput = throughput;
+        color added(0.0f);
+        // the emission Le of the surface, weighted against next-event estimation's
+        // chance of having found it (mis.hpp)
         const color glow = emitted_radiance(s, hit, r.direction);
         if (glow != color(0.0f)) {
             const bool sampled = hit_sampled_emitter(s, hit);
@@ -134,39 +105,40 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
                 const real cos_y = glm::dot(hit.geometric_normal, glm::normalize(r.direction));
                 pdf_light = solid_angle_pdf(real(1 / lights.total_area), d, cos_y);
             }
-            v.emitted = glow;
-            v.emitted_weight = emission_weight(o.strategy, bounce, sampled, pdf_before, pdf_light);
-            v.added += throughput * glow * float(v.emitted_weight);
+            const real weight = emission_weight(o.strategy, bounce, sampled, pdf_before, pdf_light);
+            observe.emission(glow, weight);
+            added += throughput * glow * float(weight);
         }
+        // next-event estimation: a random point y of the emitters, behind a shadow ray
         const vec3 n = hit.normal; // faces the ray: the side the path is on
         const bool last = bounce >= o.max_bounces;
         if (!last && aim) {
             const real xi0 = rng.next_float(), xi1 = rng.next_float(), xi2 = rng.next_float();
             const emitter_sample y = sample_emitters(lights, xi0, xi1, xi2);
-            v.light_sampled = true;
-            v.light_point = y.point;
-            v.light_estimate = next_event_estimate(m.kd, hit.point, n, y);
-            if (v.light_estimate != color(0.0f)) {
-                ++traced;
-                v.light_visible = !accel.any_hit(spawn_ray_to(hit, y.point), 0, 1 - shadow_epsilon);
-                if (v.light_visible) {
+            const color estimate = next_event_estimate(m.kd, hit.point, n, y);
+            bool visible = false;
+            real weight = 0;
+            if (estimate != color(0.0f)) {
+                observe.ray_traced();
+                visible = !accel.any_hit(spawn_ray_to(hit, y.point), 0, 1 - shadow_epsilon);
+                if (visible) {
                     const vec3 to_light = y.point - hit.point;
                     const real d = glm::length(to_light);
                     const vec3 w = to_light / d;
                     const real pdf_light = solid_angle_pdf(y.pdf_area, d, glm::dot(y.normal, w));
-                    v.light_weight = light_sample_weight(o.strategy, pdf_light, cosine_hemisphere_pdf(glm::dot(n, w)));
-                    v.added += throughput * v.light_estimate * float(v.light_weight);
+                    weight = light_sample_weight(o.strategy, pdf_light, cosine_hemisphere_pdf(glm::dot(n, w)));
+                    added += throughput * estimate * float(weight);
                 }
             }
+            observe.light(y, estimate, visible, weight);
         }
-        L += v.added;
+        observe.added(added);
+        L += added;
         if (last) {
-            if (story) {
-                story->vertices.push_back(v);
-                story->ending = "ended: the most bounces a path may make (" + std::to_string(o.max_bounces) + ")";
-            }
-            break;
+            observe.end(path_end::max_bounces, color(0.0f), L);
+            return L;
         }
+        // the next direction, and the throughput it carries on
         const real xi1 = rng.next_float(), xi2 = rng.next_float();
         bsdf_sample next;
         if (o.strategy == path_strategy::uniform) {
@@ -177,34 +149,43 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
         } else {
             next = sample_lambertian(m.kd, n, xi1, xi2);
         }
-        v.bounced = true;
-        v.direction = next.direction;
-        v.pdf = next.pdf;
-        v.weight = next.weight;
+        observe.bounce(next);
         throughput *= next.weight;
         pdf_before = next.pdf;
-        bool goes_on = next.pdf > 0 && throughput != color(0.0f);
-        if (goes_on && o.roulette && bounce + 1 >= o.roulette_start) {
-            v.roulette_played = true;
+        if (!(next.pdf > 0) || throughput == color(0.0f)) { // a NaN density ends it too
+            observe.end(path_end::absorbed, color(0.0f), L);
+            return L;
+        }
+        if (o.roulette && bounce + 1 >= o.roulette_start) {
             const real xi = rng.next_float();
-            goes_on = russian_roulette(throughput, bounce + 1, o.roulette_start, xi);
-            v.survived = goes_on;
+            const bool survived = russian_roulette(throughput, bounce + 1, o.roulette_start, xi);
+            observe.roulette(survived);
+            if (!survived) {
+                observe.end(path_end::roulette, color(0.0f), L);
+                return L;
+            }
         }
-        if (story) {
-            story->vertices.push_back(v);
-            if (!goes_on)
-                story->ending = v.roulette_played && !v.survived ? "ended by Russian roulette"
-                                                                 : "ended: the surface reflects nothing (kd 0)";
-        }
-        if (!goes_on)
-            break;
         r = spawn_ray(hit, next.direction);
     }
-    if (story)
-        story->radiance = L;
-    if (rays)
-        *rays += traced;
-    return L;
+}
+
+/// The form before observers (0.1): `story` and `rays` may each be null.
+template <class Accelerator>
+[[deprecated("use path_radiance(..., o, rt::path_story_recorder{&story}) or rt::ray_count_observer{&rays}")]]
+color path_radiance(const scene& s, const Accelerator& accel, const emitter_list& lights, const ray& camera_ray,
+                    pcg32& rng, const path_options& o, path_story* story, std::uint64_t* rays = nullptr)
+{
+    path_story ignored;
+    struct both : path_story_recorder {
+        std::uint64_t* count;
+        both(path_story* into, std::uint64_t* counter) : path_story_recorder(into), count(counter) {}
+        void ray_traced()
+        {
+            if (count)
+                ++*count;
+        }
+    } observe(story ? story : &ignored, rays);
+    return path_radiance(s, accel, lights, camera_ray, rng, o, observe);
 }
 
 struct path_render_options {
@@ -250,7 +231,7 @@ path_render_result render_paths(const scene& s, const Accelerator& accel, const 
                 pcg32 rng = seeded_generator(o.seed, pixel, std::uint64_t(k) + 1, integrator_stream);
                 const real fx = rng.next_float(), fy = rng.next_float();
                 const ray r = ray_at(real(x) + fx, real(o.height - 1 - y) + fy);
-                const color L = path_radiance(s, accel, lights, r, rng, o.path, nullptr, &traced);
+                const color L = path_radiance(s, accel, lights, r, rng, o.path, ray_count_observer{&traced});
                 ++traced;
                 sum_r += double(L.r);
                 sum_g += double(L.g);
