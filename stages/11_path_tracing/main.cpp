@@ -25,84 +25,9 @@
 #include <rt/scene/scene.hpp>
 #include <rt/rendering/scene_input.hpp> // has_obj_extension
 
+#include "path_story_text.hpp"
 #include "stage_main.hpp"
 #include "support.hpp"
-
-namespace {
-
-/// A point, direction or color (rt::vec3 or rt::color, float or double) as "(x, y, z)".
-template <class T>
-std::string text(const glm::vec<3, T, glm::defaultp>& v)
-{
-    std::ostringstream out;
-    out << std::setprecision(6) << "(" << v.x << ", " << v.y << ", " << v.z << ")";
-    return out.str();
-}
-
-/// A path's story, bounce by bounce, in words.
-void print_story(std::ostream& out, const rt::path_story& st, const rt::scene& s, const rt::ray& camera, int column,
-                 int row, const rt::path_options& o)
-{
-    out << "pixel (" << column << ", " << row << "): the render's first sample, strategy " << rt::name_of(o.strategy)
-        << (o.roulette ? ", Russian roulette from bounce " + std::to_string(o.roulette_start) : ", no roulette") << "\n";
-    out << "  camera ray from " << text(camera.origin) << " along " << text(camera.direction) << "\n";
-    int bounce = 0;
-    for (const rt::path_vertex& v : st.vertices) {
-        const rt::material& m = s.material_of(v.material);
-        out << "  bounce " << bounce << ": hit " << text(v.point) << ", material '" << m.name << "' (kd "
-            << text(m.kd) << "), throughput " << text(v.throughput) << "\n";
-        if (v.emitted != rt::color(0.0f))
-            out << "    it glows: Le " << text(v.emitted) << ", weight " << v.emitted_weight
-                << (v.emitted_weight == 0 ? " (next-event estimation counted it already)" : "") << "\n";
-        if (v.light_sampled) {
-            out << "    next-event estimation: the light point " << text(v.light_point);
-            if (v.light_estimate == rt::color(0.0f) && m.kd == rt::color(0.0f))
-                out << ": the surface reflects nothing (kd 0)\n";
-            else if (v.light_estimate == rt::color(0.0f))
-                out << " is below the surface, or the surface is behind the light: nothing\n";
-            else if (!v.light_visible)
-                out << " is hidden: the shadow ray is blocked\n";
-            else
-                out << " is visible: estimate " << text(v.light_estimate) << ", weight " << v.light_weight << "\n";
-        }
-        out << "    adds " << text(v.added) << "\n";
-        if (v.bounced)
-            out << "    next direction " << text(v.direction) << ", pdf " << v.pdf << ", weight f cos / pdf "
-                << text(v.weight) << "\n";
-        if (v.roulette_played)
-            out << "    Russian roulette: " << (v.survived ? "goes on" : "ends here") << "\n";
-        ++bounce;
-    }
-    if (st.escaped)
-        out << "  the path leaves the scene: background " << text(s.background) << " adds " << text(st.background_added)
-            << "\n";
-    out << "  " << st.ending << "\n";
-    out << "  radiance of this sample: " << text(st.radiance) << "\n";
-}
-
-void print_story_json(std::ostream& out, const rt::path_story& st, const rt::scene& s, int column, int row)
-{
-    auto v3 = [](const rt::vec3& v) {
-        std::ostringstream o;
-        o << std::setprecision(9) << "[" << v.x << ", " << v.y << ", " << v.z << "]";
-        return o.str();
-    };
-    auto c3 = [&](const rt::color& c) { return v3(rt::vec3(rt::real(c.r), rt::real(c.g), rt::real(c.b))); };
-    out << "{\"pixel\": [" << column << ", " << row << "], \"bounces\": [";
-    for (std::size_t i = 0; i < st.vertices.size(); ++i) {
-        const rt::path_vertex& v = st.vertices[i];
-        out << (i ? ", " : "") << "{\"point\": " << v3(v.point) << ", \"material\": \""
-            << rt::detail::printable(s.material_of(v.material).name) << "\", \"throughput\": " << c3(v.throughput)
-            << ", \"emitted\": " << c3(v.emitted) << ", \"emitted_weight\": " << v.emitted_weight
-            << ", \"light_visible\": " << (v.light_visible ? "true" : "false") << ", \"light_estimate\": "
-            << c3(v.light_estimate) << ", \"light_weight\": " << v.light_weight << ", \"added\": " << c3(v.added)
-            << ", \"direction\": " << v3(v.direction) << ", \"pdf\": " << v.pdf << ", \"survived\": "
-            << (v.survived ? "true" : "false") << "}";
-    }
-    out << "], \"escaped\": " << (st.escaped ? "true" : "false") << ", \"radiance\": " << c3(st.radiance) << "}\n";
-}
-
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -171,21 +96,7 @@ int main(int argc, char** argv)
         const rt::emitter_list lights = rt::find_emitters(s);
         const rt::ray_source rays = rt::camera_rays(s.cam, s.width, s.height);
         if (pixel.wanted) {
-            if (pixel.column >= s.width || pixel.row >= s.height)
-                throw rt::error("option --pixel: expected a pixel of the " + std::to_string(s.width) + "x" +
-                                std::to_string(s.height) + " image, found (" + std::to_string(pixel.column) + ", " +
-                                std::to_string(pixel.row) + ")");
-            // the render's first sample of the pixel: the same generator, the same numbers
-            const std::uint64_t index = std::uint64_t(pixel.row) * std::uint64_t(s.width) + std::uint64_t(pixel.column);
-            rt::pcg32 rng = rt::seeded_generator(seed, index, 1, rt::integrator_stream);
-            const rt::real fx = rng.next_float(), fy = rng.next_float();
-            const rt::ray camera = rays(rt::real(pixel.column) + fx, rt::real(s.height - 1 - pixel.row) + fy);
-            rt::path_story story;
-            (void)rt::path_radiance(s, accel, lights, camera, rng, options.path, rt::path_story_recorder{&story});
-            if (pixel.json)
-                print_story_json(std::cout, story, s, pixel.column, pixel.row);
-            else
-                print_story(std::cout, story, s, camera, pixel.column, pixel.row, options.path);
+            stage::tell_path_story(std::cout, s, accel, lights, rays, seed, pixel, options.path);
             return 0;
         }
         rt::check_not_input(stage::file_argument(output), rt::files_read(stage::file_argument(*scene_path), s));
