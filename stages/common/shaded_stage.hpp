@@ -1,4 +1,4 @@
-// shaded_stage.hpp - what the stage 05, 06 and 07 programs share: read
+// shaded_stage.hpp - what the stage 05, 06, 07 and 09 programs share: read
 // "SCENE [-o OUTPUT] [--pixel I J] [stage options]", render one centred
 // sample per pixel with the stage's color function and the library's
 // accelerator (stage::world, compiled once), and store it; or, with --pixel,
@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include <rt/system/atomic_file.hpp>
@@ -28,6 +29,44 @@ struct story_options {
     bool shadows = false;
     bool falloff = false;
 };
+
+/// The command line of a program whose one option of its own is --max-depth N
+/// (stages 07 and 09): SCENE [-o OUTPUT] [--max-depth N] [--pixel I J].
+struct depth_command {
+    std::string scene;
+    std::string output;
+    int max_depth = -1; ///< -1: the scene's own
+    pixel_request pixel;
+
+    /// What render_shaded's `adjust` does with it: --max-depth over the scene's.
+    std::function<void(rt::scene&)> adjust() const
+    {
+        return [depth = max_depth](rt::scene& s) {
+            if (depth >= 0)
+                s.max_depth = depth;
+        };
+    }
+};
+
+/// That command line, `output` its default output; nullopt for --help (`usage` printed).
+inline std::optional<depth_command> read_depth_command(arguments& args, const std::string& usage,
+                                                       const std::string& output)
+{
+    depth_command c;
+    c.output = output;
+    const std::optional<std::string> scene_path = read_command_line(
+        args, usage, "-o, --max-depth, --pixel, --pixel-json", [&](const std::string& arg) {
+            if (arg == "--max-depth")
+                c.max_depth = int(parse_integer(arg, args.value_of(arg), 0, 64));
+            else
+                return read_image_option(args, arg, c.output, c.pixel);
+            return true;
+        });
+    if (!scene_path)
+        return std::nullopt;
+    c.scene = *scene_path;
+    return c;
+}
 
 /// Renders `scene_path` with `color` to `output` (format from the extension),
 /// or prints the story of `pixel`. `color(scene, accelerator, ray)` must take
