@@ -827,7 +827,7 @@ def check_leaks(root: Path, kits: Optional[Sequence[Path]] = None) -> KitReport:
     return report
 
 
-def main(argv: Optional[Sequence[str]] = None) -> int:
+def parse_arguments(argv: Optional[Sequence[str]]) -> Tuple[argparse.ArgumentParser, argparse.Namespace]:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--source", default=str(make_kit.DEFAULT_SOURCE), help="the reference repository")
     parser.add_argument("--work", help="work folder (default: <source>/build/kit-check)")
@@ -850,8 +850,125 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--leaks", nargs="*", metavar="KIT",
                         help="run the leak check alone: on every kit make_kit writes (in memory), or on the "
                              "kit folders given")
-    args = parser.parse_args(argv)
+    return parser, parser.parse_args(argv)
 
+
+def verdict(reports: Sequence[KitReport], started: float) -> int:
+    """The closing lines: the time taken, and how many checks passed; the exit code."""
+    failed = sum(1 for r in reports if r.problems)
+    log(f"check_kit: took {time.monotonic() - started:.0f} s")
+    log(f"check_kit: {len(reports) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+def check_reference(source: Path, work: Path, args: argparse.Namespace) -> KitReport:
+    """The reference builds, and every case of its suites passes and asserts something."""
+    report = KitReport("reference")
+    t0 = time.monotonic()
+    builder = Builder(source, work / "reference-build", args.jobs, None)
+    ok, out = builder.targets(["all"])
+    if not ok:
+        report.problems.append(f"build failed: {first_error(out)}")
+    else:
+        cases, out = run_ctest(work / "reference-build", args.jobs, args.timeout, work / "reference.xml")
+        if not cases:
+            report.problems.append(f"no test ran: {first_error(out)}")
+        report.cases = len(cases)
+        report.passed = sum(c.passed for c in cases)
+        report.problems.extend(vacuous(cases))
+        for c in cases:
+            if not c.passed:
+                report.problems.append(f"{c.name}: failed in the reference: {first_line(c.output)}")
+    report.seconds = time.monotonic() - t0
+    return report
+
+
+def kit_builders(kit: Path, args: argparse.Namespace) -> Tuple[Builder, Optional[Builder]]:
+    """The kit's g++ build, and the clang++ one (None without clang++ or with --no-clang)."""
+    builder = Builder(kit, kit / "build", args.jobs, None)
+    # A kit is a student build (RT_STUDENT_BUILD: no benchmarks, no per-header
+    # checks); the kit with every stage stripped builds them anyway, to prove
+    # they compile without the exercises.
+    builder.extra = ["-DRT_BUILD_BENCH=ON", "-DRT_HEADER_CHECK=ON"]
+    # clang++ with libc++, the standard library of macOS (the libcxx preset's choice,
+    # without its sanitizers): the stripped kit builds and its suites judge as g++'s do
+    clang = None
+    if not args.no_clang and shutil.which("clang++"):
+        clang = Builder(kit, kit / "build-libcxx", args.jobs, "clang++")
+        clang.extra = ["-DRT_HEADER_CHECK=ON"]
+        if has_libcxx():
+            clang.extra += ["-DCMAKE_CXX_FLAGS=-stdlib=libc++", "-DRT_TINYOBJLOADER_FROM_HEADER=ON"]
+    return builder, clang
+
+
+def check_clang(report: KitReport, kit: Path, work: Path, clang: Builder, name: str, plan: "make_kit.KitPlan",
+                region_messages: Dict[str, int], args: argparse.Namespace) -> None:
+    """The stripped kit with clang++: the suites and the header check build with -Werror,
+    and its suites judge as g++'s do; into `report`."""
+    library = "libc++" if has_libcxx() else "libstdc++ (libc++ is not installed)"
+    ok, out = clang.targets(["rt_suites", "rt_header_check"])
+    if not ok:
+        report.problems.append(f"clang++ with {library}: build failed (-Werror): {first_error(out)}")
+        return
+    clang_report = KitReport(f"{name}, clang++ with {library}")
+    cases, out = run_ctest(kit / "build-libcxx", args.jobs, args.timeout, work / "kit-libcxx.xml",
+                           labels="^(stage[0-9][0-9]|library)$")
+    if not cases:
+        report.problems.append(f"clang++ with {library}: no test ran: {first_error(out)}")
+    judge(clang_report, cases, {r.stage for r in plan.stripped}, region_messages)
+    report.problems += [f"clang++ with {library}: {p}" for p in clang_report.problems]
+    report.notes.append(f"clang++ with {library}, -Werror: the suites and the header check build; "
+                        f"{clang_report.passed} of {clang_report.cases} cases pass, "
+                        f"{clang_report.not_done} fail with their stage's not-done message")
+
+
+def check_plan(source: Path, kit: Path, work: Path, builder: Builder, clang: Optional[Builder], name: str,
+               stripped: Set[int], region_messages: Dict[str, int], args: argparse.Namespace,
+               number: int) -> KitReport:
+    """One kit as make_kit writes it, synced into `kit`: no instructor-only file, it
+    builds with -Werror, and each failing case fails with a stripped stage's message."""
+    report = KitReport(name)
+    t0 = time.monotonic()
+    plan = make_kit.plan_kit(source, stripped)
+    make_kit.sync_kit(source, plan, kit)
+    leaked = [f for f in plan.left_out if (kit / f).exists()]
+    if leaked:
+        report.problems.append(f"instructor-only files in the kit: {', '.join(leaked)}")
+    first = name == "all stages stripped"
+    # every kit builds everything: ctest runs the reliability suites and the stage
+    # programs too, and a binary left from the previous kit would test old headers
+    ok, out = builder.targets(["all"])
+    if not ok:
+        report.problems.append(f"build failed (-Werror): {first_error(out)}")
+    else:
+        cases, out = run_ctest(kit / "build", args.jobs, args.timeout, work / f"kit-{number}.xml")
+        if not cases:
+            report.problems.append(f"no test ran: {first_error(out)}")
+        # a region that repeats a stripped stage's answer is stripped with it (make_kit)
+        judge(report, cases, {r.stage for r in plan.stripped}, region_messages)
+        if first:
+            check_programs(report, kit, kit / "build")
+        elif len(stripped) == 1:
+            check_program_rule(report, kit, kit / "build", next(iter(stripped)))
+    if first:
+        # The benchmarks are outside every region: the kit with every stage
+        # stripped has just shown that they compile without the exercises.
+        # The per-stage kits run tests only, and the benchmarks were about
+        # 40% of each kit's compile time (CI runs on 2 cores).
+        # The viewer too: it has shown it compiles, no kit check runs it on student
+        # code, and most exercise headers reach its one large file (about 40 s a kit).
+        # Its old binary goes, so no test runs it with another kit's headers.
+        builder.extra = PER_STAGE_OPTIONS
+        builder.configured = False
+        (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
+    if first and clang is not None:
+        check_clang(report, kit, work, clang, name, plan, region_messages, args)
+    report.seconds = time.monotonic() - t0
+    return report
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    parser, args = parse_arguments(argv)
     source = Path(args.source).resolve()
     work = Path(args.work).resolve() if args.work else source / "build" / "kit-check"
     started = time.monotonic()
@@ -894,48 +1011,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         builder.extra = PER_STAGE_OPTIONS
         report = check_mistakes(source, kit, builder, chosen_stages, args.timeout)
         print_report(report)
-        failed = 1 if report.problems else 0
-        log(f"check_kit: took {time.monotonic() - started:.0f} s")
-        log(f"check_kit: {1 - failed} passed, {failed} failed")
-        return failed
+        return verdict([report], started)
 
     # 2. the reference
     if not args.no_reference:
-        report = KitReport("reference")
-        t0 = time.monotonic()
-        builder = Builder(source, work / "reference-build", args.jobs, None)
-        ok, out = builder.targets(["all"])
-        if not ok:
-            report.problems.append(f"build failed: {first_error(out)}")
-        else:
-            cases, out = run_ctest(work / "reference-build", args.jobs, args.timeout, work / "reference.xml")
-            if not cases:
-                report.problems.append(f"no test ran: {first_error(out)}")
-            report.cases = len(cases)
-            report.passed = sum(c.passed for c in cases)
-            report.problems.extend(vacuous(cases))
-            for c in cases:
-                if not c.passed:
-                    report.problems.append(f"{c.name}: failed in the reference: {first_line(c.output)}")
-        report.seconds = time.monotonic() - t0
-        reports.append(report)
-        print_report(report)
+        reports.append(check_reference(source, work, args))
+        print_report(reports[-1])
 
     # 3 and 4. the kits, all in one folder updated in place
     kit = work / "kit"
-    builder = Builder(kit, kit / "build", args.jobs, None)
-    # A kit is a student build (RT_STUDENT_BUILD: no benchmarks, no per-header
-    # checks); the kit with every stage stripped builds them anyway, to prove
-    # they compile without the exercises.
-    builder.extra = ["-DRT_BUILD_BENCH=ON", "-DRT_HEADER_CHECK=ON"]
-    # clang++ with libc++, the standard library of macOS (the libcxx preset's choice,
-    # without its sanitizers): the stripped kit builds and its suites judge as g++'s do
-    clang = None
-    if not args.no_clang and shutil.which("clang++"):
-        clang = Builder(kit, kit / "build-libcxx", args.jobs, "clang++")
-        clang.extra = ["-DRT_HEADER_CHECK=ON"]
-        if has_libcxx():
-            clang.extra += ["-DCMAKE_CXX_FLAGS=-stdlib=libc++", "-DRT_TINYOBJLOADER_FROM_HEADER=ON"]
+    builder, clang = kit_builders(kit, args)
     per_stage = [(f"stage {s:02d} stripped", {s}) for s in stages_with_regions]
     plans = [("all stages stripped", set(all_stages))]
     if args.only:
@@ -948,59 +1033,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     if args.real_kits:
         plans += per_stage
     for name, stripped in plans:
-        report = KitReport(name)
-        t0 = time.monotonic()
-        plan = make_kit.plan_kit(source, stripped)
-        make_kit.sync_kit(source, plan, kit)
-        leaked = [f for f in plan.left_out if (kit / f).exists()]
-        if leaked:
-            report.problems.append(f"instructor-only files in the kit: {', '.join(leaked)}")
-        first = name == "all stages stripped"
-        # every kit builds everything: ctest runs the reliability suites and the stage
-        # programs too, and a binary left from the previous kit would test old headers
-        ok, out = builder.targets(["all"])
-        if not ok:
-            report.problems.append(f"build failed (-Werror): {first_error(out)}")
-        else:
-            cases, out = run_ctest(kit / "build", args.jobs, args.timeout, work / f"kit-{len(reports)}.xml")
-            if not cases:
-                report.problems.append(f"no test ran: {first_error(out)}")
-            # a region that repeats a stripped stage's answer is stripped with it (make_kit)
-            judge(report, cases, {r.stage for r in plan.stripped}, region_messages)
-            if first:
-                check_programs(report, kit, kit / "build")
-            elif len(stripped) == 1:
-                check_program_rule(report, kit, kit / "build", next(iter(stripped)))
-        if first:
-            # The benchmarks are outside every region: the kit with every stage
-            # stripped has just shown that they compile without the exercises.
-            # The per-stage kits run tests only, and the benchmarks were about
-            # 40% of each kit's compile time (CI runs on 2 cores).
-            # The viewer too: it has shown it compiles, no kit check runs it on student
-            # code, and most exercise headers reach its one large file (about 40 s a kit).
-            # Its old binary goes, so no test runs it with another kit's headers.
-            builder.extra = PER_STAGE_OPTIONS
-            builder.configured = False
-            (kit / "build" / "stages" / "viewer" / "viewer").unlink(missing_ok=True)
-        if first and clang is not None:
-            library = "libc++" if has_libcxx() else "libstdc++ (libc++ is not installed)"
-            ok, out = clang.targets(["rt_suites", "rt_header_check"])
-            if not ok:
-                report.problems.append(f"clang++ with {library}: build failed (-Werror): {first_error(out)}")
-            else:
-                clang_report = KitReport(f"{name}, clang++ with {library}")
-                cases, out = run_ctest(kit / "build-libcxx", args.jobs, args.timeout, work / "kit-libcxx.xml",
-                                       labels="^(stage[0-9][0-9]|library)$")
-                if not cases:
-                    report.problems.append(f"clang++ with {library}: no test ran: {first_error(out)}")
-                judge(clang_report, cases, {r.stage for r in plan.stripped}, region_messages)
-                report.problems += [f"clang++ with {library}: {p}" for p in clang_report.problems]
-                report.notes.append(f"clang++ with {library}, -Werror: the suites and the header check build; "
-                                    f"{clang_report.passed} of {clang_report.cases} cases pass, "
-                                    f"{clang_report.not_done} fail with their stage's not-done message")
-        report.seconds = time.monotonic() - t0
-        reports.append(report)
-        print_report(report)
+        reports.append(check_plan(source, kit, work, builder, clang, name, stripped, region_messages, args,
+                                  len(reports)))
+        print_report(reports[-1])
 
     if not args.real_kits and per_stage:
         reports += check_switchable(source, kit, builder, per_stage, args, work, region_messages)
@@ -1011,9 +1046,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             builder.extra = PER_STAGE_OPTIONS
             builder.configured = False
         chosen_stages = {s for _, stripped in per_stage for s in stripped} if args.only else None
-        report = check_mistakes(source, kit, builder, chosen_stages, args.timeout)
-        reports.append(report)
-        print_report(report)
+        reports.append(check_mistakes(source, kit, builder, chosen_stages, args.timeout))
+        print_report(reports[-1])
 
     # every exercise reached by at least one failing case (a warning: a case stops at
     # the first exercise it meets, so an exercise may be hidden behind another)
@@ -1021,11 +1055,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     for message in ([] if args.only else sorted(set(region_messages) - seen)):
         log(f"check_kit: note: no failing case reported '{message}' first; "
             f"is that exercise tested on its own?")
-
-    failed = sum(1 for r in reports if r.problems)
-    log(f"check_kit: took {time.monotonic() - started:.0f} s")
-    log(f"check_kit: {len(reports) - failed} passed, {failed} failed")
-    return 1 if failed else 0
+    return verdict(reports, started)
 
 
 def print_report(report: KitReport) -> None:
