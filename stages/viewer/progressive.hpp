@@ -162,7 +162,8 @@ inline rt::radiance_function path_radiance_of(const rt::scene& s)
     auto lights = std::make_shared<const rt::emitter_list>(rt::find_emitters(s));
     const rt::scene* scene = &s;
     return [accel, lights, scene](const rt::ray& r, rt::sample_context& ctx) {
-        return rt::path_radiance(*scene, *accel, *lights, r, ctx.rng, rt::path_options{}, rt::ray_count_observer{&ctx.rays});
+        return rt::path_radiance(*scene, *accel, *lights, r, ctx.rng, rt::path_options{},
+                                 rt::ray_count_observer{&ctx.rays});
     };
 }
 
