@@ -30,15 +30,7 @@
 #include <rt/scene/scene.hpp>
 #include <rt/core/vec.hpp>
 
-// rt::accelerator lives in the inline namespace of this unit's fast paths
-// (rt/bvh/abi_begin.hpp: no intrinsics, so this header stays light)
-#include <rt/bvh/abi_begin.hpp>
-namespace rt {
-inline namespace RT_BVH_ACCELERATOR_ABI {
-class accelerator;
-}
-} // namespace rt
-#include <rt/bvh/simd_end.hpp>
+#include <rt/bvh/accelerator_fwd.hpp> // rt::accelerator named, not defined: this header stays light
 
 namespace stage {
 

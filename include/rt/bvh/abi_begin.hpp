@@ -8,7 +8,7 @@
 // one unit's build with the other's traversal; with it each unit has its own
 // types, and passing one unit's accelerator to the other is a link error, not
 // a wrong answer (tests/library_mixed_targets.cpp). Includes no intrinsics: a
-// header that only names the types (stages/common/support.hpp) stays light.
+// header that only names the types (accelerator_fwd.hpp) stays light.
 // bvh/simd_end.hpp takes the macros away. (No #pragma once: each section opens anew.)
 //
 //     #include "abi_begin.hpp"

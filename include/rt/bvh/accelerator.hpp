@@ -1,5 +1,7 @@
-// accelerator.hpp - the library's nearest hit of a ray in a whole scene (stage 04;
-// every later stage calls it).
+// accelerator.hpp - the library's nearest hit of a ray in a whole scene: what
+// every stage program from 05 on traces with, and what stage 04's program
+// compares the student's list and groups with (not an exercise). A header that
+// only names rt::accelerator includes accelerator_fwd.hpp instead.
 //
 // rt::accelerator is built once from a scene, as a flat list of packed
 // primitives or as a BVH (bvh.hpp), and returns exactly the same hits as the

@@ -30,6 +30,7 @@
 //   bvh.hpp             this file: build, then closest_hit() and any_hit()
 //   dispatch.hpp        the 8-wide path again, for AVX2 CPUs, in a unit built without AVX2
 //   accelerator.hpp     rt::accelerator: a scene's shapes behind the BVH or a flat list
+//   accelerator_fwd.hpp rt::accelerator declared, for a header that only names it
 // What each choice bought, measured, is in docs/performance.md (experiment 6).
 //
 //     const std::vector<rt::packed_primitive> prims = {rt::pack_triangle(a, b, c, 0)};
