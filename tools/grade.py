@@ -170,8 +170,9 @@ def read_submission(ctx: Context, rt_folder: Path, root: Path, outcome: Outcome)
                        if p.is_file() and p.name.endswith(HEADER_SUFFIXES))
     # a header at its kit path first, then one taken by its file name (handed in loose)
     exact = {f"include/rt/{name}" for name in handed_in}
+    kit_files = set(reference.plan.files)
     taken: Dict[str, str] = {}
-    for name in sorted(handed_in, key=lambda n: f"include/rt/{n}" not in reference.plan.files):
+    for name in sorted(handed_in, key=lambda n: f"include/rt/{n}" not in kit_files):
         rel = reference_path(name, reference.plan.files) or f"include/rt/{name}"
         if rel != f"include/rt/{name}":
             if rel in exact or rel in taken:

@@ -83,12 +83,10 @@ void render_shaded(const std::string& program, const std::string& scene_path, co
         check_input_and_outputs(scene_path, "a scene file", {file_argument(output)});
     }
     rt::scene s = stage::load_scene(scene_path);
-    if (!pixel.wanted) {
-        rt::check_not_input(file_argument(output), rt::files_read(file_argument(scene_path), s)); // its OBJ, MTL files
-        // the image (three floats a pixel) and its bytes
-        rt::check_memory_for(std::uint64_t(s.width) * std::uint64_t(s.height) * (12 + 3),
-                             "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
-    }
+    const std::uint64_t pixel_count = std::uint64_t(s.width) * std::uint64_t(s.height);
+    if (!pixel.wanted) // the image (three floats a pixel) and its bytes
+        check_after_load(scene_path, s, {file_argument(output)}, pixel_count * (12 + 3),
+                         "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
     if (adjust)
         adjust(s);
     const stage::world w(s);

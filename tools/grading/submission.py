@@ -307,19 +307,15 @@ def find_rt_folder(root: Path, reference_headers: Sequence[str]) -> Path:
     rt/intersection/sphere.hpp), else a folder holding rt's headers."""
     candidates: List[Tuple[int, int, str, Path]] = []
     known = set(reference_headers)
+    headers_in = {Path(dirpath): [f for f in filenames if f.endswith(HEADER_SUFFIXES)]
+                  for dirpath, _, filenames in os.walk(root)}
     with_headers = set()  # the folders with a header in them or below
-    for dirpath, dirnames, filenames in os.walk(root):
-        if any(f.endswith(HEADER_SUFFIXES) for f in filenames):
-            here = Path(dirpath)
-            while here not in with_headers and here != root.parent:
-                with_headers.add(here)
-                here = here.parent
-    for dirpath, dirnames, filenames in os.walk(root):
-        dirnames.sort()
-        here = Path(dirpath)
-        if here not in with_headers:
-            continue
-        headers = [f for f in filenames if f.endswith(HEADER_SUFFIXES)]
+    for here, headers in headers_in.items():
+        while headers and here not in with_headers and here != root.parent:
+            with_headers.add(here)
+            here = here.parent
+    for here in with_headers:
+        headers = headers_in[here]
         depth = len(here.relative_to(root).parts)
         if here.name == "rt" and here.parent.name == "include":
             candidates.append((0, depth, str(here), here))
