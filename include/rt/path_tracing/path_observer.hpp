@@ -32,8 +32,6 @@ enum class path_end {
 
 /// The observer that hears nothing; each call is the moment of the path it names.
 struct no_path_observer {
-    /// A ray traced after the camera ray: a bounce's ray or a shadow ray.
-    void ray_traced() {}
     /// The path meets a surface at `hit`, arriving with `throughput`.
     void surface(const hit_record& /*hit*/, const color& /*throughput*/) {}
     /// The surface glows with Le, counted with `weight` (mis.hpp).
@@ -47,8 +45,13 @@ struct no_path_observer {
     void bounce(const bsdf_sample& /*next*/) {}
     /// Russian roulette was played: whether the path goes on.
     void roulette(bool /*survived*/) {}
-    /// The path ends: why, what the background added (for `escaped`), and its radiance.
-    void end(path_end /*why*/, const color& /*background_added*/, const color& /*radiance*/) {}
+    /// The path ends: why, what the background added (for `escaped`), its radiance,
+    /// and how many rays it traced after the camera ray (bounces' rays and shadow rays;
+    /// told once, at the end, so that no count is kept in memory ray by ray).
+    void end(path_end /*why*/, const color& /*background_added*/, const color& /*radiance*/,
+             std::uint64_t /*rays*/)
+    {
+    }
 };
 
 /// Counts the rays a path traces after its camera ray into *count.
@@ -56,7 +59,7 @@ struct ray_count_observer : no_path_observer {
     std::uint64_t* count = nullptr;
 
     explicit ray_count_observer(std::uint64_t* counter) : count(counter) {}
-    void ray_traced() { ++*count; }
+    void end(path_end, const color&, const color&, std::uint64_t rays) { *count += rays; }
 };
 
 } // namespace rt

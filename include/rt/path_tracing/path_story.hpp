@@ -7,6 +7,7 @@
 //     for (const rt::path_vertex& v : story.vertices) ...
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -93,7 +94,7 @@ struct path_story_recorder : no_path_observer {
         story->vertices.back().roulette_played = true;
         story->vertices.back().survived = survived;
     }
-    void end(path_end why, const color& background_added, const color& radiance)
+    void end(path_end why, const color& background_added, const color& radiance, std::uint64_t /*rays*/)
     {
         story->escaped = why == path_end::escaped;
         story->background_added = background_added;

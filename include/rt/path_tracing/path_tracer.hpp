@@ -81,14 +81,16 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
     const bool aim = samples_lights(o.strategy) && !lights.empty();
     color L(0.0f), throughput(1.0f);
     ray r = camera_ray;
-    real pdf_before = 0; // the density of the direction that led here
+    real pdf_before = 0;     // the density of the direction that led here
+    std::uint64_t rays = 0; // traced after the camera ray, told at the end
     for (int bounce = 0;; ++bounce) {
         hit_record hit;
         if (bounce > 0)
-            observe.ray_traced();
+            ++rays;
         if (!accel.closest_hit(r, 0, infinite, hit)) {
-            L += throughput * s.background;
-            observe.end(path_end::escaped, throughput * s.background, L);
+            const color background = throughput * s.background;
+            L += background;
+            observe.end(path_end::escaped, background, L, rays);
             return L;
         }
         observe.surface(hit, throughput);
@@ -119,7 +121,7 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
             bool visible = false;
             real weight = 0;
             if (estimate != color(0.0f)) {
-                observe.ray_traced();
+                ++rays;
                 visible = !accel.any_hit(spawn_ray_to(hit, y.point), 0, 1 - shadow_epsilon);
                 if (visible) {
                     const vec3 to_light = y.point - hit.point;
@@ -135,7 +137,7 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
         observe.added(added);
         L += added;
         if (last) {
-            observe.end(path_end::max_bounces, color(0.0f), L);
+            observe.end(path_end::max_bounces, color(0.0f), L, rays);
             return L;
         }
         // the next direction, and the throughput it carries on
@@ -153,7 +155,7 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
         throughput *= next.weight;
         pdf_before = next.pdf;
         if (!(next.pdf > 0) || throughput == color(0.0f)) { // a NaN density ends it too
-            observe.end(path_end::absorbed, color(0.0f), L);
+            observe.end(path_end::absorbed, color(0.0f), L, rays);
             return L;
         }
         if (o.roulette && bounce + 1 >= o.roulette_start) {
@@ -161,7 +163,7 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
             const bool survived = russian_roulette(throughput, bounce + 1, o.roulette_start, xi);
             observe.roulette(survived);
             if (!survived) {
-                observe.end(path_end::roulette, color(0.0f), L);
+                observe.end(path_end::roulette, color(0.0f), L, rays);
                 return L;
             }
         }
@@ -179,10 +181,11 @@ color path_radiance(const scene& s, const Accelerator& accel, const emitter_list
     struct both : path_story_recorder {
         std::uint64_t* count;
         both(path_story* into, std::uint64_t* counter) : path_story_recorder(into), count(counter) {}
-        void ray_traced()
+        void end(path_end why, const color& background_added, const color& radiance, std::uint64_t rays)
         {
+            path_story_recorder::end(why, background_added, radiance, rays);
             if (count)
-                ++*count;
+                *count += rays;
         }
     } observe(story ? story : &ignored, rays);
     return path_radiance(s, accel, lights, camera_ray, rng, o, observe);
