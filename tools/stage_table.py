@@ -20,6 +20,8 @@ nothing to check: its README is the kit's own.
 import pathlib
 import sys
 
+from grading.common import write_atomically  # tools/ is this script's folder, so on sys.path
+
 SOURCE = "docs/stages/stages.tsv"
 BEGIN = f"<!-- generated: tools/stage_table.py from {SOURCE} -->"
 END = "<!-- end generated -->"
@@ -125,7 +127,9 @@ def blocks(root: pathlib.Path, rows: list, write: bool) -> list:
         if found == wanted:
             continue
         if write:
-            path.write_text(text[:begin] + wanted + text[end + len(END):], encoding="utf-8")
+            # whole or not at all: an interrupted --write leaves the page as it was
+            write_atomically(path, (text[:begin] + wanted + text[end + len(END):]).encode("utf-8"),
+                             mode=path.stat().st_mode & 0o777)
             continue
         line = text.count("\n", 0, begin) + 1
         problems.append(f"{name}:{line}:1: expected the stages of {SOURCE}, found a block that differs; "
